@@ -1,0 +1,50 @@
+#pragma once
+/// \file cli_main.h
+/// The one place where exceptions become exit codes, shared by every program:
+/// 0 success, 1 internal error, 2 bad usage or invalid input, 3 input/output error.
+/// Messages go to stderr as one line: `program: message`.
+
+#include "garbing/errors.h"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+namespace mg {
+
+template <class Body>
+int run_cli(const char* program, Body&& body) {
+  try {
+    return body();
+  } catch (const CLI::CallForHelp&) {
+    return 0;  // CLI11 already printed the help
+  } catch (const CLI::ParseError& e) {
+    std::cerr << program << ": " << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const InvalidInput& e) {
+    std::cerr << program << ": " << e.what() << '\n';
+    return 2;
+  } catch (const IoError& e) {
+    std::cerr << program << ": " << e.what() << '\n';
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << program << ": internal error: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+/// Parses the command line, printing help (and throwing CallForHelp) on --help.
+inline void parse_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    throw;
+  } catch (const CLI::CallForAllHelp&) {
+    std::cout << app.help("", CLI::AppFormatMode::All);
+    throw CLI::CallForHelp();
+  }
+}
+
+}  // namespace mg

@@ -1,0 +1,55 @@
+#pragma once
+/// \file medial_surface.h
+/// The medial surface S: a set of medial atoms (spheres) with optional connectivity, and its
+/// file formats. This is the one data type every module shares.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <array>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace mg {
+
+/// A medial atom: a ball. Model units; radius finite and > 0.
+struct MedialAtom {
+  Eigen::Vector3d centre;
+  double radius;
+};
+
+/// A medial surface: atoms plus the optional edges and triangles of the `.ma` format.
+struct MedialSurface {
+  std::vector<MedialAtom> atoms;
+  std::vector<std::array<int, 2>> edges;  ///< indices into atoms
+  std::vector<std::array<int, 3>> faces;  ///< indices into atoms
+};
+
+/// Checks every documented precondition of S.
+/// @pre at least one atom; centres finite; radii finite and > 0; edge and face indices in range.
+/// @throws InvalidInput naming the first offending atom, edge or face (0-based index).
+void validate(const MedialSurface& s);
+
+/// Parses a medial surface from text. Two formats, told apart by the first significant line:
+/// - `.ma` (Q-MAT and successors): a header `nv ne nf`, then `v x y z r`, `e i j`, `f i j k`
+///   lines (0-based indices, any order of v/e/f lines);
+/// - plain: one `x y z r` line per atom.
+/// `#` starts a comment; blank lines are ignored. The result is validated.
+/// @param in   the text
+/// @param name used in messages: `name:line: problem`
+/// @throws InvalidInput on any malformed line, count mismatch or invalid atom
+MedialSurface parse_medial_surface(std::istream& in, const std::string& name);
+
+/// Reads a medial surface file (see parse_medial_surface).
+/// @throws IoError if the file cannot be opened; InvalidInput if it is malformed
+MedialSurface read_medial_surface(const std::string& path);
+
+/// Writes S in the `.ma` format with 17 significant digits (exact double round trip).
+void format_medial_surface(std::ostream& out, const MedialSurface& s);
+
+/// Writes S to `path` in the `.ma` format through a temporary file renamed at the end, so a
+/// failure never leaves a partial file. @throws IoError
+void write_medial_surface(const MedialSurface& s, const std::string& path);
+
+}  // namespace mg

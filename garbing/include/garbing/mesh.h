@@ -1,0 +1,42 @@
+#pragma once
+/// \file mesh.h
+/// The project's two mesh representations: an indexed polygon soup (what files hold, what
+/// checks read) and an OpenMesh half-edge mesh in double precision (what algorithms edit).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+
+#include <vector>
+
+namespace mg {
+
+/// OpenMesh's defaults store floats; every 1e-9 check downstream needs doubles.
+struct MeshTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+
+/// Half-edge polygon mesh, double precision. Faces CCW seen from outside.
+using Mesh = OpenMesh::PolyMesh_ArrayKernelT<MeshTraits>;
+
+/// Indexed face list, exactly as a file holds it: no face is ever dropped or merged.
+struct PolygonSoup {
+  std::vector<Eigen::Vector3d> points;  ///< model units
+  std::vector<std::vector<int>> faces;  ///< 0-based indices into points, 3+ per face
+};
+
+/// The soup of a half-edge mesh (vertex and face order kept).
+PolygonSoup soup_from_mesh(const Mesh& mesh);
+
+/// Builds a half-edge mesh from a soup.
+/// @param name used in messages
+/// @pre every face has 3+ distinct in-range indices; every edge is used by at most two faces,
+///      in opposite directions; every vertex has one fan of faces.
+/// @throws InvalidInput naming the first offending face, edge or vertex
+Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& name);
+
+/// Length of the diagonal of the axis-aligned bounding box of `points` (0 if empty).
+double bbox_diagonal(const std::vector<Eigen::Vector3d>& points);
+
+}  // namespace mg

@@ -1,0 +1,71 @@
+#include "garbing/mesh.h"
+
+#include "garbing/errors.h"
+#include "garbing/mesh_topology.h"
+
+namespace mg {
+
+PolygonSoup soup_from_mesh(const Mesh& mesh) {
+  PolygonSoup soup;
+  soup.points.reserve(mesh.n_vertices());
+  for (const auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    soup.points.emplace_back(p[0], p[1], p[2]);
+  }
+  soup.faces.reserve(mesh.n_faces());
+  for (const auto f : mesh.faces()) {
+    std::vector<int> face;
+    for (const auto v : mesh.fv_range(f)) face.push_back(v.idx());
+    soup.faces.push_back(std::move(face));
+  }
+  return soup;
+}
+
+Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& name) {
+  const int n = static_cast<int>(soup.points.size());
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    const auto& face = soup.faces[f];
+    if (face.size() < 3)
+      throw InvalidInput(name + ": face " + std::to_string(f) + " has " +
+                         std::to_string(face.size()) + " vertices (3 or more needed)");
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      if (face[i] < 0 || face[i] >= n)
+        throw InvalidInput(name + ": face " + std::to_string(f) + ": vertex index " +
+                           std::to_string(face[i]) + " out of range [0, " + std::to_string(n) +
+                           ")");
+      for (std::size_t j = 0; j < i; ++j)
+        if (face[j] == face[i])
+          throw InvalidInput(name + ": face " + std::to_string(f) + " repeats vertex " +
+                             std::to_string(face[i]));
+    }
+  }
+  const MeshTopology topo = mesh_topology(soup);
+  if (!topo.oriented) throw InvalidInput(name + ": " + topo.first_problem);
+
+  Mesh mesh;
+  mesh.reserve(soup.points.size(), topo.edges, soup.faces.size());
+  std::vector<Mesh::VertexHandle> handles;
+  handles.reserve(soup.points.size());
+  for (const auto& p : soup.points) handles.push_back(mesh.add_vertex(Mesh::Point(p.x(), p.y(), p.z())));
+  std::vector<Mesh::VertexHandle> loop;
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    loop.clear();
+    for (int v : soup.faces[f]) loop.push_back(handles[v]);
+    if (!mesh.add_face(loop).is_valid())
+      throw TopologyError(name + ": face " + std::to_string(f) +
+                          " was refused by the half-edge mesh although the soup is manifold");
+  }
+  return mesh;
+}
+
+double bbox_diagonal(const std::vector<Eigen::Vector3d>& points) {
+  if (points.empty()) return 0.0;
+  Eigen::Vector3d lo = points.front(), hi = points.front();
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
+}  // namespace mg

@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""The models program at its edges: exit codes, one-line messages, no partial output."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+MODELS = sys.argv.pop(1) if len(sys.argv) > 1 else "models"
+
+
+def run(*args):
+    return subprocess.run([MODELS, *args], capture_output=True, text=True)
+
+
+class ModelsCli(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_generate_then_info(self):
+        out = os.path.join(self.dir, "t.off")
+        r = run("generate", "torus", "--ring", "12", "--tube", "8", "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = run("info", out, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        info = json.loads(r.stdout)
+        self.assertEqual((info["vertices"], info["faces"], info["genus"]), (96, 192, 1))
+        self.assertTrue(info["closed"])
+
+    def test_missing_input_is_an_io_error(self):
+        r = run("info", os.path.join(self.dir, "none.off"))
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("none.off: cannot open for reading", r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1)
+
+    def test_malformed_input_is_invalid(self):
+        bad = os.path.join(self.dir, "bad.off")
+        with open(bad, "w") as f:
+            f.write("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+        r = run("info", bad)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("bad.off: file ends early", r.stderr)
+
+    def test_bad_parameters_leave_no_file(self):
+        out = os.path.join(self.dir, "s.off")
+        r = run("generate", "sphere", "--frequency", "0", "-o", out)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("frequency must be >= 1", r.stderr)
+        self.assertEqual(os.listdir(self.dir), [])
+
+    def test_unknown_option_is_bad_usage(self):
+        r = run("generate", "sphere", "--colour", "red", "-o", os.path.join(self.dir, "s.off"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--colour", r.stderr)
+
+    def test_missing_output_folder(self):
+        r = run("generate", "sphere", "-o", os.path.join(self.dir, "no", "s.off"))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("does not exist", r.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds in Release into build/, then runs the main job.
+set -euo pipefail
+cd "$(dirname "$0")"
+source scripts/common.sh
+mg_install
+mg_build
+"$MG_PYTHON" experiments/models.py --build "$MG_BUILD_DIR" --write-results "$@"

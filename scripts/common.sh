@@ -1,0 +1,43 @@
+# Shared by run.sh and test.sh: install what is missing, then configure and build in Release.
+# Sourced, not executed.
+
+# Debian 12 packages the project builds and runs with.
+MG_PACKAGES=(
+  build-essential cmake ccache
+  libcgal-dev libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev libopenvdb-dev
+  povray povray-includes meshlab xvfb xauth
+  python3 python3-matplotlib python3-numpy
+)
+
+# Debian's interpreter: it sees the python3-* packages (a pyenv or venv python3 on PATH does not).
+MG_PYTHON=/usr/bin/python3
+MG_BUILD_DIR=${MG_BUILD_DIR:-build}
+
+mg_install() {
+  local missing=() p
+  for p in "${MG_PACKAGES[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed'; then
+      missing+=("$p")
+    fi
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local cmd="apt-get install -y --no-install-recommends ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "Missing Debian packages. As root, run:" >&2
+    echo "  apt-get update && $cmd" >&2
+    exit 1
+  fi
+  echo "== installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  $cmd
+}
+
+mg_build() {
+  local extra=()
+  # CI builds with warnings as errors (STYLE.md).
+  [ "${CI:-}" = "true" ] && extra+=(-DMG_WERROR=ON)
+  cmake -S . -B "$MG_BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$MG_PYTHON" "${extra[@]}"
+  cmake --build "$MG_BUILD_DIR" --parallel "$(nproc)"
+}
