@@ -1,0 +1,84 @@
+#pragma once
+/// \file octree.h
+/// Step 1 of the garbing: the adaptive octree T over the atoms' spheres (paper section 3.1,
+/// ALGORITHM.md "Step 1"), driven by four subdivision criteria iterated to a fixed point.
+
+#include "garbing/medial_surface.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace mg {
+
+/// Options of build_octree().
+struct OctreeOptions {
+  /// Minimal active depth d (criterion 2), in levels; 0 = automatic: the first level whose
+  /// cube side is <= rc / 8, rc = (rmin + rmax) / 2.
+  int min_depth = 0;
+  /// Safety stop, in levels: no cell is split beyond it; Octree::hit_max_depth reports whether
+  /// a criterion wanted to. @pre 1 <= max_depth <= 20
+  int max_depth = 14;
+  /// criteria[k - 1] switches criterion k (1..4) on or off, for ablations.
+  std::array<bool, 4> criteria = {true, true, true, true};
+  /// A cell inside one closed ball holds no boundary face: do not split it beyond what grading
+  /// (criterion 4) demands. Changes no boundary leaf and no M1 face; only for tests and timing.
+  bool skip_interior_cells = true;
+};
+
+/// An octree cell. Integer coordinates: the cell spans [ijk, ijk + 1] * side(level).
+struct OctreeCell {
+  int level = 0;
+  std::array<std::uint32_t, 3> ijk = {0, 0, 0};
+  int parent = -1;        ///< index in Octree::cells; -1 for the root
+  int first_child = -1;   ///< children are cells first_child .. first_child + 7; -1 for a leaf
+  bool inside_one_ball = false;  ///< the closed cube lies inside one closed ball
+  std::vector<int> spheres;      ///< Spheres(c): atoms whose closed ball meets the closed cube
+  bool is_leaf() const { return first_child < 0; }
+  bool is_active() const { return !spheres.empty(); }
+};
+
+/// The octree and its frame. Child k of a cell has offset (k & 1, k >> 1 & 1, k >> 2 & 1).
+struct Octree {
+  /// The root cube: world = origin + axes * local, local in [0, root_side]^3. `axes` holds the
+  /// principal axes of the atom centres as columns (right-handed, fixed signs; identity when
+  /// two eigenvalues are repeated, e.g. one atom, two atoms, a ring).
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double root_side = 0;      ///< model units: the tight cube around the spheres, no padding
+  double rc = 0;             ///< characteristic radius (rmin + rmax) / 2, model units
+  int min_depth = 0;         ///< d actually used
+  int max_depth = 0;         ///< the safety stop given
+  int depth = 0;             ///< deepest level present
+  bool hit_max_depth = false;        ///< a criterion wanted to split a cell at max_depth
+  std::array<long, 4> splits = {0, 0, 0, 0};  ///< cells split by criterion k (first reason)
+  std::vector<OctreeCell> cells;     ///< cells[0] is the root
+  std::vector<int> leaves;           ///< leaf indices, sorted by (Morton order, level)
+
+  double side(int level) const;                             ///< cube side at `level`
+  Eigen::Vector3d to_local(const Eigen::Vector3d& world) const;   ///< into [0, root_side]^3
+  Eigen::Vector3d to_world(const Eigen::Vector3d& local) const;
+};
+
+/// Step 1: builds T from the atoms.
+/// @param atoms centres and radii in model units
+/// @pre atoms valid (see validate); 1 <= opt.max_depth <= 20; 0 <= opt.min_depth <= max_depth
+///      (automatic d above max_depth is refused too)
+/// @throws InvalidInput naming the bad atom or option
+/// @post criteria 1-4 (those switched on) hold at every active leaf, unless hit_max_depth
+Octree build_octree(const MedialSurface& atoms, const OctreeOptions& opt = {});
+
+/// The deepest cell covering the cell (level, ijk) (itself if it exists, else the leaf
+/// ancestor), or -1 if ijk lies outside the root.
+int find_cell(const Octree& tree, int level, const std::array<std::int64_t, 3>& ijk);
+
+/// The leaves under cell `c` that touch a neighbour lying in direction -offset from `c` (e.g.
+/// offset (1, 0, 0): the leaves on c's low-x side), appended to `out` in child order.
+void leaves_facing(const Octree& tree, int c, const std::array<int, 3>& offset,
+                   std::vector<int>& out);
+
+/// Leaves whose closed cells touch the closed cell `c` (share at least a point), any level,
+/// sorted by index, without `c` itself.
+void touching_leaves(const Octree& tree, int c, std::vector<int>& out);
+
+}  // namespace mg

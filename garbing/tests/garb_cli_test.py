@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""The garb program at its edges: output, stats, exit codes, one-line messages, no partial output."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+GARB = sys.argv.pop(1) if len(sys.argv) > 1 else "garb"
+MODELS = sys.argv.pop(1) if len(sys.argv) > 1 else "models"
+
+
+def run(*args):
+    return subprocess.run([GARB, *args], capture_output=True, text=True)
+
+
+class GarbCli(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.ma = self.write("one.ma", "1 0 0\nv 0 0 0 1\n")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, name, text):
+        path = os.path.join(self.dir, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def assert_refused(self, r, code, message, outputs):
+        self.assertEqual(r.returncode, code, r.stderr)
+        self.assertIn(message, r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        for o in outputs:
+            self.assertFalse(os.path.exists(o), o)
+        self.assertFalse([f for f in os.listdir(self.dir) if "partial" in f])
+
+    def test_one_sphere_gives_the_papers_face_count_and_stats(self):
+        r = run(self.ma, "-o", self.path("m.off"), "--m1", self.path("m1.obj"),
+                "--stats", self.path("s.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        stats = json.load(open(self.path("s.json")))
+        self.assertEqual(stats["min_depth"], 4)
+        self.assertEqual(stats["m1"]["faces"], 1344)
+        self.assertEqual(stats["m1"]["genus"], 0)
+        self.assertFalse(stats["hit_max_depth"])
+        info = subprocess.run([MODELS, "info", self.path("m1.obj"), "--json"],
+                              capture_output=True, text=True)
+        self.assertEqual(json.loads(info.stdout)["faces"], 1344)
+
+    def test_same_output_at_one_and_two_threads(self):
+        ma = self.write("ring.ma", "".join("%r %r 0 0.3\n" % (
+            __import__("math").cos(k * 0.10471975511965977),
+            __import__("math").sin(k * 0.10471975511965977)) for k in range(60)))
+        for t in ("1", "2"):
+            r = run(ma, "-o", self.path("t%s.off" % t), "--threads", t)
+            self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(open(self.path("t1.off"), "rb").read(), open(self.path("t2.off"), "rb").read())
+
+    def test_missing_input(self):
+        r = run(self.path("none.ma"), "-o", self.path("m.off"))
+        self.assert_refused(r, 3, "none.ma: cannot open for reading", [self.path("m.off")])
+
+    def test_empty_input(self):
+        r = run(self.write("e.ma", ""), "-o", self.path("m.off"))
+        self.assert_refused(r, 2, "e.ma: empty file, no atoms", [self.path("m.off")])
+
+    def test_nan_and_negative_radius(self):
+        r = run(self.write("n.ma", "1 0 0\nv 0 0 0 nan\n"), "-o", self.path("m.off"))
+        self.assert_refused(r, 2, "n.ma:2: radius must be finite, got nan", [self.path("m.off")])
+        r = run(self.write("z.ma", "0 0 0 1\n0 0 1 -0.3\n"), "-o", self.path("m.off"))
+        self.assert_refused(r, 2, "z.ma:2: radius must be > 0, got -0.3", [self.path("m.off")])
+
+    def test_min_depth_above_max_depth(self):
+        r = run(self.ma, "-o", self.path("m.off"), "--min-depth", "9", "--max-depth", "8",
+                "--stats", self.path("s.json"))
+        self.assert_refused(r, 2, "min depth 9 must be in [0, max depth 8]",
+                            [self.path("m.off"), self.path("s.json")])
+
+    def test_unknown_option_and_bad_criterion(self):
+        r = run(self.ma, "-o", self.path("m.off"), "--smooth")
+        self.assert_refused(r, 2, "--smooth", [self.path("m.off")])
+        r = run(self.ma, "-o", self.path("m.off"), "--no-criterion", "5")
+        self.assert_refused(r, 2, "--no-criterion", [self.path("m.off")])
+
+    def test_output_never_overwrites_the_input(self):
+        r = run(self.ma, "-o", self.ma)
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(open(self.ma).read(), "1 0 0\nv 0 0 0 1\n")
+
+    def test_unknown_output_extension(self):
+        r = run(self.ma, "-o", self.path("m.vtk"))
+        self.assert_refused(r, 2, "unknown mesh extension", [self.path("m.vtk")])
+
+
+if __name__ == "__main__":
+    unittest.main()
