@@ -1,6 +1,7 @@
 // garb: medial surface garbing. Atoms in, closed triangle mesh out.
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
-//        [--no-criterion N ...] [--stats FILE.json] [--threads N]
+//        [--no-criterion N ...] [--cones rt|all|edges|none] [--cone-filter F] [--spheres-only]
+//        [--refine K] [--no-dual] [--max-travel T] [--stats FILE.json] [--threads N]
 #include "garbing/atomic_file.h"
 #include "garbing/cli_main.h"
 #include "garbing/coarse_mesh.h"
@@ -8,6 +9,9 @@
 #include "garbing/mesh_io.h"
 #include "garbing/mesh_topology.h"
 #include "garbing/octree.h"
+#include "garbing/refine_mesh.h"
+
+#include <sys/resource.h>
 
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
@@ -45,8 +49,7 @@ int garb_main(int argc, char** argv) {
   std::vector<int> off;
   int threads = 0;
   app.add_option("input", input, "medial surface (.ma, or x y z r lines)")->required();
-  app.add_option("-o,--output", output, "output mesh (.off .obj .ply .stl); receives M1 for now")
-      ->required();
+  app.add_option("-o,--output", output, "output mesh M2 (.off .obj .ply .stl)")->required();
   app.add_option("--m1", m1_path, "also write the coarse mesh M1 here");
   app.add_option("--min-depth", opt.min_depth, "minimal active depth d (0 = automatic: side <= rc/8)")
       ->check(CLI::NonNegativeNumber);
@@ -54,6 +57,21 @@ int garb_main(int argc, char** argv) {
       ->check(CLI::Range(1, 20));
   app.add_option("--no-criterion", off, "switch a subdivision criterion off (1-4, repeatable)")
       ->check(CLI::Range(1, 4));
+  mg::RefineOptions refine;
+  std::string cones = "rt";
+  bool spheres_only = false, no_dual = false;
+  app.add_option("--cones", cones, "cone pairs: rt (regular triangulation), all, edges (.ma), none")
+      ->check(CLI::IsMember({"rt", "all", "edges", "none"}));
+  app.add_option("--cone-filter", refine.cones.min_circle_ratio,
+                 "keep a cone if the intersection circle radius >= F * the smaller radius")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--spheres-only", spheres_only, "no cones: G is the union of the spheres");
+  app.add_option("--refine", refine.subdivisions, "rounds of 1-to-4 subdivision + migration")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--no-dual", no_dual, "migrate M1 itself, triangulated (ablation)");
+  app.add_option("--max-travel", refine.max_travel,
+                 "longest migration, in leaf sides, before the closest-point fallback")
+      ->check(CLI::PositiveNumber);
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   mg::parse_command_line(app, argc, argv);
@@ -69,6 +87,8 @@ int garb_main(int argc, char** argv) {
   }
   if (!stats_path.empty()) mg::check_output_path(stats_path, inputs);
   for (int k : off) opt.criteria[k - 1] = false;
+  refine.cones.source = spheres_only ? mg::ConeSource::none : mg::parse_cone_source(cones);
+  refine.dual = !no_dual;
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -86,12 +106,21 @@ int garb_main(int argc, char** argv) {
   const double t_m1 = seconds_since(t0);
 
   t0 = Clock::now();
+  const mg::RefinedMesh m2 = mg::refine_mesh(m1, tree, atoms, refine);
+  const double t_m2 = seconds_since(t0);
+  const double t_garbing = seconds_since(t_start) - t_read;
+
+  t0 = Clock::now();
   if (!m1_path.empty()) mg::write_mesh(m1.mesh, m1_path);
-  mg::write_mesh(m1.mesh, output);
+  mg::write_mesh(m2.mesh, output);
   const double t_write = seconds_since(t0);
 
   if (!stats_path.empty()) {
     const mg::MeshTopology topo = mg::mesh_topology(mg::soup_from_mesh(m1.mesh));
+    const mg::MeshTopology topo2 = mg::mesh_topology(mg::soup_from_mesh(m2.mesh));
+    const mg::RefineStats& r = m2.stats;
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
     std::map<int, long> per_level, active_per_level;
     long active = 0;
     for (int c : tree.leaves) {
@@ -128,7 +157,39 @@ int garb_main(int argc, char** argv) {
                {"components", topo.components},   {"euler", topo.euler},
                {"genus", topo.genus},               {"hanging_corners", m1.hanging_corners},
                {"split_vertices", m1.split_vertices}};
-    j["seconds"] = {{"read", t_read}, {"octree", t_octree}, {"m1", t_m1}, {"write", t_write},
+    j["m2"] = {{"vertices", m2.mesh.n_vertices()},
+               {"faces", m2.mesh.n_faces()},
+               {"components", topo2.components},
+               {"euler", topo2.euler},
+               {"genus", topo2.genus},
+               {"closed", topo2.closed},
+               {"oriented", topo2.oriented},
+               {"cones", r.cones},
+               {"cone_source", cones},
+               {"cone_filter", refine.cones.min_circle_ratio},
+               {"dual", refine.dual},
+               {"subdivisions", refine.subdivisions},
+               {"vertices_migrated", r.vertices_migrated},
+               {"fallback_zero_direction", r.fallback_zero_direction},
+               {"fallback_missed", r.fallback_missed},
+               {"fallback_too_far", r.fallback_too_far},
+               {"collapsed_digons", r.collapsed_digons},
+               {"intersecting_pairs_before_repair", r.intersecting_before},
+               {"degenerate_before_repair", r.degenerate_before},
+               {"intersecting_pairs_after_repair", r.intersecting_after},
+               {"degenerate_after_repair", r.degenerate_after},
+               {"repaired_vertices", r.repaired_vertices},
+               {"pull_back_steps", r.pulled_back}};
+    j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
+    j["seconds"] = {{"read", t_read},
+                    {"octree", t_octree},
+                    {"m1", t_m1},
+                    {"cones", r.seconds_cones},
+                    {"migration", r.seconds_migration},
+                    {"repair", r.seconds_repair},
+                    {"m2", t_m2},
+                    {"garbing", t_garbing},
+                    {"write", t_write},
                     {"total", seconds_since(t_start)}};
     write_json(j, stats_path);
   }

@@ -51,6 +51,31 @@ void leaves_facing(const Octree& tree, int c, const std::array<int, 3>& offset,
   }
 }
 
+void active_leaves_containing(const Octree& tree, const Eigen::Vector3d& local, std::vector<int>& out) {
+  out.clear();
+  if (tree.cells.empty()) return;
+  int stack[64 * 8];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int c = stack[--top];
+    const OctreeCell& cell = tree.cells[c];
+    const double side = tree.side(cell.level);
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = cell.ijk[a] * side;
+      if (local[a] < lo || local[a] > lo + side) inside = false;
+    }
+    if (!inside) continue;
+    if (cell.is_leaf()) {
+      if (cell.is_active()) out.push_back(c);
+    } else {
+      for (int k = 0; k < 8; ++k) stack[top++] = cell.first_child + k;
+    }
+  }
+  std::sort(out.begin(), out.end());
+}
+
 void touching_leaves(const Octree& tree, int c, std::vector<int>& out) {
   out.clear();
   const OctreeCell& cell = tree.cells[c];

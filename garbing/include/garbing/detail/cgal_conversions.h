@@ -7,6 +7,8 @@
 
 #include "garbing/medial_surface.h"
 
+#include <CGAL/number_utils.h>
+
 namespace mg::detail {
 
 template <class Kernel>

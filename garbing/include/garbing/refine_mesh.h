@@ -1,0 +1,54 @@
+#pragma once
+/// \file refine_mesh.h
+/// Step 3 of the garbing: M2, the dual of M1 migrated onto the target shape G (paper section
+/// 3.3, ALGORITHM.md "Step 3").
+
+#include "garbing/coarse_mesh.h"
+#include "garbing/octree.h"
+#include "garbing/target_shape.h"
+
+#include <cstddef>
+
+namespace mg {
+
+struct RefineOptions {
+  ConeOptions cones;        ///< which cones join the spheres in G
+  bool dual = true;         ///< false: migrate M1 itself, triangulated (Figure 11's ablation)
+  int subdivisions = 0;     ///< rounds of 1-to-4 subdivision followed by migration (Figure 14)
+  double max_travel = 4.0;  ///< in sides of the vertex's leaf; a longer ray falls back
+  int repair_rounds = 8;    ///< rounds of each repair stage (relaxation on G, then pull-back)
+};
+
+struct RefineStats {
+  std::size_t cones = 0;
+  std::size_t vertices_migrated = 0;
+  std::size_t fallback_zero_direction = 0;  ///< |m(v)| ~ 0: closest point of G instead
+  std::size_t fallback_missed = 0;          ///< the ray met no primitive
+  std::size_t fallback_too_far = 0;         ///< the ray reached G beyond max_travel
+  std::size_t collapsed_digons = 0;         ///< valence-2 M1 vertices (dual 2-gons) dropped
+  /// Defects found right after each migration pass (the first, then one per subdivision
+  /// round), summed; and what is left at the end.
+  std::size_t intersecting_before = 0, degenerate_before = 0;
+  std::size_t intersecting_after = 0, degenerate_after = 0;
+  std::size_t repaired_vertices = 0;  ///< vertices moved by the repair (on G or pulled back)
+  std::size_t pulled_back = 0;        ///< pull-back steps taken (leave a vertex off G)
+  double seconds_cones = 0, seconds_migration = 0, seconds_repair = 0;
+};
+
+struct RefinedMesh {
+  Mesh mesh;  ///< M2: closed oriented triangle mesh, world coordinates, CCW from outside
+  RefineStats stats;
+};
+
+/// Step 3: M2. With `opt.dual`, one vertex per M1 face at the centre of its square and one
+/// face per M1 vertex, triangulated (V(M2) = F(M1) minus nothing; faces from valence-2 M1
+/// vertices collapse to an edge). Each vertex moves along m(v) = -sum of m_g(v) over the
+/// primitives of its leaf onto G; fold-overs are detected and repaired.
+/// @param m1    from extract_coarse_mesh(tree)
+/// @param tree  from build_octree(atoms)
+/// @param atoms the medial surface the tree was built from
+/// @pre opt.subdivisions >= 0, opt.max_travel > 0, opt.repair_rounds >= 0  @throws InvalidInput
+RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const MedialSurface& atoms,
+                        const RefineOptions& opt = {});
+
+}  // namespace mg

@@ -1,0 +1,124 @@
+#pragma once
+/// \file target_shape.h
+/// The target shape G of the garbing (ALGORITHM.md "Step 3"): the boundary of the union of
+/// the primitives P — every atom's sphere, plus for chosen intersecting pairs of atoms the cone
+/// tangent to both (cone and spheres together form the pair's convex hull).
+/// Queries are exact for spheres and cones; a bounding-volume hierarchy over the primitives'
+/// boxes is the broad phase.
+
+#include "garbing/medial_surface.h"
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace mg {
+
+/// Which pairs of atoms get a cone.
+enum class ConeSource {
+  regular_triangulation,  ///< pairs adjacent in the regular triangulation (weights r^2)
+  all_pairs,              ///< every intersecting pair (the paper; quadratic on pole skeletons)
+  ma_edges,               ///< the `.ma` file's edges
+  none                    ///< spheres only
+};
+
+struct ConeOptions {
+  ConeSource source = ConeSource::regular_triangulation;
+  /// Keep a cone only if the two spheres' intersection circle has a radius of at least this
+  /// fraction of the smaller sphere's radius (0 keeps every intersecting pair; 1 keeps none
+  /// but concentric equal spheres). Cones of barely intersecting balls bridge concavities.
+  double min_circle_ratio = 0.0;
+};
+
+/// Parses "rt", "all", "edges" or "none". @throws InvalidInput
+ConeSource parse_cone_source(const std::string& name);
+
+/// The pairs (i < j) that get a cone: from `opt.source`, kept when the two balls intersect,
+/// neither contains the other, and the circle-ratio filter passes. Sorted.
+/// @pre atoms valid   @throws InvalidInput
+std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const ConeOptions& opt);
+
+/// The solid cone tangent to two intersecting balls (c1, r1), (c2, r2), L > |r1 - r2|: the
+/// truncated cone between the two tangent circles. Axial coordinate t from c1 along u.
+struct Cone {
+  int a = -1, b = -1;        ///< atom indices
+  Eigen::Vector3d c1, u;     ///< first centre, unit axis toward the second
+  double r1 = 0, length = 0; ///< first radius, L = |c2 - c1|
+  double sin_phi = 0, cos_phi = 1;  ///< sin(phi) = (r1 - r2) / L
+  double t_lo = 0, t_hi = 0;        ///< axial range of the lateral surface
+  double rho_lo = 0, rho_hi = 0;    ///< its radius at t_lo and t_hi
+};
+
+/// Builds the cone of atoms a and b. @pre the balls intersect and neither contains the other
+Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b);
+
+/// The per-primitive migration vector of ALGORITHM.md: with p the foot on the primitive's axis
+/// of the surface normal through v and r the radius there,
+/// m_g(v) = r (v - p) / |v - p|^2. Zero when v is on the axis, and for a cone when the foot
+/// falls outside [0, L].
+Eigen::Vector3d migration_vector(const MedialAtom& sphere, const Eigen::Vector3d& v);
+Eigen::Vector3d migration_vector(const Cone& cone, const Eigen::Vector3d& v);
+
+/// A primitive: index < number of atoms is a sphere, otherwise a cone.
+using PrimitiveId = int;
+
+/// G with its spatial queries. Immutable after construction; queries are thread-safe.
+class TargetShape {
+ public:
+  /// @param atoms  the spheres (any frame: G lives in the atoms' frame)
+  /// @param pairs  the cones (from cone_pairs())
+  TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs);
+  ~TargetShape();
+  TargetShape(TargetShape&&) noexcept;
+  TargetShape& operator=(TargetShape&&) noexcept;
+
+  std::size_t sphere_count() const { return spheres_.size(); }
+  std::size_t cone_count() const { return cones_.size(); }
+  const MedialAtom& sphere(PrimitiveId i) const { return spheres_[i]; }
+  const Cone& cone(PrimitiveId i) const { return cones_[i - spheres_.size()]; }
+  bool is_sphere(PrimitiveId i) const { return i < static_cast<int>(spheres_.size()); }
+
+  /// m_g of primitive i at v.
+  Eigen::Vector3d migration_vector(PrimitiveId i, const Eigen::Vector3d& v) const;
+
+  /// Whether p lies in the union (closed primitives).
+  bool contains(const Eigen::Vector3d& p) const;
+
+  /// Whether p lies strictly deeper than `eps` inside primitive i (model units).
+  bool primitive_contains(PrimitiveId i, const Eigen::Vector3d& p, double eps = 0) const;
+
+  /// From a point outside the union: the smallest t in [0, t_max] at which the ray
+  /// origin + t dir enters a primitive. False if it enters none by t_max.
+  /// @param dir need not be unit; t is in units of |dir|
+  bool first_entry(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max,
+                   double& t) const;
+
+  /// From a point inside the union: the end of the merged run of primitive intervals along the
+  /// ray that contains t = 0 (where the ray leaves the union). False if it lies beyond t_max.
+  bool run_end(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max,
+               double& t) const;
+
+  /// A closest point of G to p (exact when p is outside the union; when inside, the nearest of
+  /// the exposed closest points of nearby primitives and of exits along 26 directions).
+  Eigen::Vector3d closest_point(const Eigen::Vector3d& p) const;
+
+  /// Distance from p to G (unsigned), with the same exactness as closest_point().
+  double distance(const Eigen::Vector3d& p) const { return (closest_point(p) - p).norm(); }
+
+  /// Primitives whose solid meets the axis-aligned box [lo, hi] (exact for spheres; for cones,
+  /// the convex hull of the two balls is tested), appended in increasing id order.
+  void primitives_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                              std::vector<PrimitiveId>& out) const;
+
+  /// The cones among primitives meeting the box (ids), appended in increasing id order.
+  void cones_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                         std::vector<PrimitiveId>& out) const;
+
+ private:
+  struct Bvh;
+  std::vector<MedialAtom> spheres_;
+  std::vector<Cone> cones_;
+  std::unique_ptr<Bvh> bvh_;
+};
+
+}  // namespace mg

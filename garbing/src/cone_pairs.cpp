@@ -1,0 +1,100 @@
+// cone_pairs(): which pairs of atoms get a cone. The one CGAL translation unit of mg::garbing
+// that builds a regular triangulation.
+#include "garbing/detail/cgal_conversions.h"
+#include "garbing/errors.h"
+#include "garbing/target_shape.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Regular_triangulation_3.h>
+#include <CGAL/Regular_triangulation_cell_base_3.h>
+#include <CGAL/Regular_triangulation_vertex_base_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mg {
+namespace {
+
+using K = CGAL::Epick;
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>;
+using Cb = CGAL::Regular_triangulation_cell_base_3<K>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using Regular = CGAL::Regular_triangulation_3<K, Tds>;
+
+/// Edges of the regular triangulation of the atoms (weights r^2), as sorted atom pairs.
+/// Hidden atoms (whose power cell is empty) have no vertex and no edge.
+std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
+  std::vector<std::pair<Regular::Weighted_point, int>> points;
+  points.reserve(atoms.atoms.size());
+  for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
+    points.emplace_back(detail::to_weighted_point<K>(atoms.atoms[i]), static_cast<int>(i));
+  Regular rt(points.begin(), points.end());
+  std::vector<std::array<int, 2>> edges;
+  edges.reserve(rt.number_of_finite_edges());
+  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
+    int a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
+    if (a > b) std::swap(a, b);
+    edges.push_back({a, b});
+  }
+  return edges;
+}
+
+/// Every pair of intersecting balls, found through the primitives' hierarchy.
+std::vector<std::array<int, 2>> intersecting_pairs(const MedialSurface& atoms) {
+  const TargetShape spheres(atoms, {});
+  std::vector<std::array<int, 2>> pairs;
+  std::vector<PrimitiveId> near;
+  for (std::size_t i = 0; i < atoms.atoms.size(); ++i) {
+    const auto& a = atoms.atoms[i];
+    near.clear();
+    spheres.primitives_meeting_box(a.centre - Eigen::Vector3d::Constant(a.radius),
+                                   a.centre + Eigen::Vector3d::Constant(a.radius), near);
+    for (int j : near)
+      if (j > static_cast<int>(i)) pairs.push_back({static_cast<int>(i), j});
+  }
+  return pairs;
+}
+
+}  // namespace
+
+std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const ConeOptions& opt) {
+  validate(atoms);
+  if (!(opt.min_circle_ratio >= 0 && opt.min_circle_ratio <= 1))
+    throw InvalidInput("cone filter: the minimal circle ratio must be in [0, 1]");
+  std::vector<std::array<int, 2>> candidates;
+  switch (opt.source) {
+    case ConeSource::none:
+      return {};
+    case ConeSource::regular_triangulation:
+      candidates = regular_edges(atoms);
+      break;
+    case ConeSource::all_pairs:
+      candidates = intersecting_pairs(atoms);
+      break;
+    case ConeSource::ma_edges:
+      for (auto e : atoms.edges) {
+        if (e[0] == e[1]) continue;
+        if (e[0] > e[1]) std::swap(e[0], e[1]);
+        candidates.push_back(e);
+      }
+      break;
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  std::vector<std::array<int, 2>> pairs;
+  for (const auto& [i, j] : candidates) {
+    const MedialAtom& a = atoms.atoms[i];
+    const MedialAtom& b = atoms.atoms[j];
+    const double L = (b.centre - a.centre).norm();
+    if (!(L < a.radius + b.radius) || !(L > std::abs(a.radius - b.radius))) continue;
+    // Radius of the intersection circle against the smaller radius.
+    const double x = (L * L + a.radius * a.radius - b.radius * b.radius) / (2 * L);
+    const double h = std::sqrt(std::max(0.0, a.radius * a.radius - x * x));
+    if (h < opt.min_circle_ratio * std::min(a.radius, b.radius)) continue;
+    pairs.push_back({i, j});
+  }
+  return pairs;
+}
+
+}  // namespace mg

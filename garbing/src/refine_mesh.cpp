@@ -1,0 +1,423 @@
+#include "garbing/refine_mesh.h"
+
+#include "garbing/errors.h"
+#include "garbing/triangle_defects.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+namespace mg {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+enum class Outcome { ray, zero_direction, missed, too_far };
+
+/// The vertex-migration worker: everything in the octree's root frame, G built there too.
+class Refiner {
+ public:
+  Refiner(const CoarseMesh& m1, const Octree& tree, const MedialSurface& atoms,
+          const RefineOptions& opt)
+      : m1_(m1), tree_(tree), opt_(opt) {
+    const auto t0 = Clock::now();
+    MedialSurface local = atoms;
+    for (auto& a : local.atoms) a.centre = tree.to_local(a.centre);
+    shape_ = std::make_unique<TargetShape>(local, cone_pairs(atoms, opt.cones));
+    stats_.cones = shape_->cone_count();
+    stats_.seconds_cones = seconds_since(t0);
+  }
+
+  RefinedMesh run() {
+    const auto t0 = Clock::now();
+    if (opt_.dual)
+      start_from_dual();
+    else
+      start_from_m1();
+    migrate_all();
+    std::vector<std::array<int, 3>> triangles = triangulate();
+    stats_.seconds_migration = seconds_since(t0);
+    repair(triangles);
+    for (int round = 0; round < opt_.subdivisions; ++round) {
+      const auto t1 = Clock::now();
+      triangles = subdivide(triangles);
+      stats_.seconds_migration += seconds_since(t1);
+      repair(triangles);
+    }
+    return build(triangles);
+  }
+
+  // --- the starting mesh ---------------------------------------------------------------------
+
+  /// P(c) of a leaf: Spheres(c) and the cones meeting the cube (cached per leaf).
+  void add_leaf_primitives(int leaf, std::vector<PrimitiveId>& out) const {
+    const OctreeCell& cell = tree_.cells[leaf];
+    out.insert(out.end(), cell.spheres.begin(), cell.spheres.end());
+    const double side = tree_.side(cell.level);
+    const Vec3 lo(cell.ijk[0] * side, cell.ijk[1] * side, cell.ijk[2] * side);
+    shape_->cones_meeting_box(lo, lo + Vec3::Constant(side), out);
+  }
+
+  /// P for a point (vertices of --no-dual and --refine): the primitives meeting the closed
+  /// cube of any leaf that contains it (for an active leaf, its Spheres(c) and Cones(c); a
+  /// point of a cone can lie in an inactive leaf, which then contributes its cones). The leaf
+  /// size for the travel limit is the smallest such leaf's.
+  void point_primitives(const Vec3& p, std::vector<PrimitiveId>& out, double& side) const {
+    out.clear();
+    side = tree_.root_side;
+    std::vector<int> stack = {0};
+    while (!stack.empty()) {
+      const int c = stack.back();
+      stack.pop_back();
+      const OctreeCell& cell = tree_.cells[c];
+      const double s = tree_.side(cell.level);
+      const Vec3 lo(cell.ijk[0] * s, cell.ijk[1] * s, cell.ijk[2] * s);
+      if ((p.array() < lo.array()).any() || (p.array() > lo.array() + s).any()) continue;
+      if (!cell.is_leaf()) {
+        for (int k = 0; k < 8; ++k) stack.push_back(cell.first_child + k);
+        continue;
+      }
+      shape_->primitives_meeting_box(lo, lo + Vec3::Constant(s), out);
+      side = std::min(side, s);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+  void start_from_dual() {
+    // Vertices: the centres of M1's squares; P from the owning leaf.
+    const std::size_t n = m1_.faces.size();
+    start_.resize(n);
+    leaf_side_.resize(n);
+    std::vector<int> owners;
+    for (std::size_t f = 0; f < n; ++f) {
+      const CoarseFace& face = m1_.faces[f];
+      const double side = tree_.side(face.level);
+      for (int a = 0; a < 3; ++a)
+        start_[f][a] = (static_cast<double>(face.corner[a]) + (a == face.axis ? 0.0 : 0.5)) * side;
+      leaf_side_[f] = tree_.side(tree_.cells[face.owner].level);
+      owners.push_back(face.owner);
+    }
+    std::sort(owners.begin(), owners.end());
+    owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+    std::vector<std::vector<PrimitiveId>> per_owner(owners.size());
+    tbb::parallel_for(std::size_t(0), owners.size(),
+                      [&](std::size_t i) { add_leaf_primitives(owners[i], per_owner[i]); });
+    primitives_.resize(n);
+    for (std::size_t f = 0; f < n; ++f) {
+      const auto it = std::lower_bound(owners.begin(), owners.end(), m1_.faces[f].owner);
+      primitives_[f] = per_owner[it - owners.begin()];
+    }
+    // Faces: one per M1 vertex, the M1 faces around it in counter-clockwise order.
+    const Mesh& mesh = m1_.mesh;
+    for (const auto v : mesh.vertices()) {
+      std::vector<int> loop;
+      for (const auto f : mesh.vf_ccw_range(v)) loop.push_back(f.idx());
+      if (loop.size() < 3) {
+        ++stats_.collapsed_digons;  // a pinch midpoint: its two faces share an edge instead
+        continue;
+      }
+      // Counter-clockwise around the vertex seen from outside: the dual face points outward.
+      polygons_.push_back(std::move(loop));
+    }
+  }
+
+  void start_from_m1() {
+    const Mesh& mesh = m1_.mesh;
+    start_.resize(mesh.n_vertices());
+    leaf_side_.resize(mesh.n_vertices());
+    primitives_.resize(mesh.n_vertices());
+    for (const auto v : mesh.vertices()) {
+      const auto& p = mesh.point(v);
+      start_[v.idx()] = tree_.to_local(Vec3(p[0], p[1], p[2]));
+    }
+    tbb::parallel_for(std::size_t(0), start_.size(), [&](std::size_t i) {
+      point_primitives(start_[i], primitives_[i], leaf_side_[i]);
+    });
+    for (const auto f : mesh.faces()) {
+      std::vector<int> loop;
+      for (const auto v : mesh.fv_range(f)) loop.push_back(v.idx());
+      polygons_.push_back(std::move(loop));
+    }
+  }
+
+  // --- migration -----------------------------------------------------------------------------
+
+  Outcome migrate(const Vec3& v, const std::vector<PrimitiveId>& prims, double side, Vec3& out) const {
+    Vec3 m = Vec3::Zero();
+    for (PrimitiveId g : prims) m -= shape_->migration_vector(g, v);
+    const double norm = m.norm();
+    Outcome outcome = Outcome::ray;
+    if (!(norm > 1e-12)) {
+      outcome = Outcome::zero_direction;
+    } else {
+      const Vec3 dir = m / norm;
+      const double t_max = opt_.max_travel * side;
+      double t;
+      const bool inside = shape_->contains(v);
+      const bool hit = inside ? shape_->run_end(v, -dir, t_max, t) : shape_->first_entry(v, dir, t_max, t);
+      if (hit) {
+        out = inside ? Vec3(v - t * dir) : Vec3(v + t * dir);
+        return outcome;
+      }
+      const bool anywhere = inside ? shape_->run_end(v, -dir, 1e300, t) : shape_->first_entry(v, dir, 1e300, t);
+      outcome = anywhere ? Outcome::too_far : Outcome::missed;
+    }
+    out = shape_->closest_point(v);
+    return outcome;
+  }
+
+  void count(Outcome o) {
+    switch (o) {
+      case Outcome::ray: break;
+      case Outcome::zero_direction: ++stats_.fallback_zero_direction; break;
+      case Outcome::missed: ++stats_.fallback_missed; break;
+      case Outcome::too_far: ++stats_.fallback_too_far; break;
+    }
+  }
+
+  /// Migrates vertices [first, end) of start_ into position_.
+  void migrate_range(std::size_t first) {
+    const std::size_t n = start_.size();
+    position_.resize(n);
+    std::vector<Outcome> outcome(n - first);
+    tbb::parallel_for(first, n, [&](std::size_t i) {
+      outcome[i - first] = migrate(start_[i], primitives_[i], leaf_side_[i], position_[i]);
+    });
+    for (Outcome o : outcome) count(o);
+    stats_.vertices_migrated += n - first;
+  }
+
+  void migrate_all() { migrate_range(0); }
+
+  // --- triangulation and subdivision ---------------------------------------------------------
+
+  /// Triangulation of a polygon (vertex ids) minimising the total length of its diagonals
+  /// (dynamic programming), which keeps the triangles of non-planar dual faces well shaped.
+  void triangulate_polygon(const std::vector<int>& poly, std::vector<std::array<int, 3>>& out) const {
+    const int n = static_cast<int>(poly.size());
+    if (n == 3) {
+      out.push_back({poly[0], poly[1], poly[2]});
+      return;
+    }
+    auto len = [&](int i, int j) { return (position_[poly[i]] - position_[poly[j]]).norm(); };
+    std::vector<double> cost(n * n, 0.0);
+    std::vector<int> split(n * n, -1);
+    for (int gap = 2; gap < n; ++gap)
+      for (int i = 0; i + gap < n; ++i) {
+        const int j = i + gap;
+        double best = INFINITY;
+        for (int k = i + 1; k < j; ++k) {
+          double c = cost[i * n + k] + cost[k * n + j];
+          if (k > i + 1) c += len(i, k);
+          if (j > k + 1) c += len(k, j);
+          if (c < best) {
+            best = c;
+            split[i * n + j] = k;
+          }
+        }
+        cost[i * n + j] = best;
+      }
+    // Unroll the split table.
+    std::vector<std::pair<int, int>> stack = {{0, n - 1}};
+    while (!stack.empty()) {
+      const auto [i, j] = stack.back();
+      stack.pop_back();
+      if (j - i < 2) continue;
+      const int k = split[i * n + j];
+      out.push_back({poly[i], poly[k], poly[j]});
+      stack.push_back({i, k});
+      stack.push_back({k, j});
+    }
+  }
+
+  std::vector<std::array<int, 3>> triangulate() const {
+    std::vector<std::array<int, 3>> triangles;
+    for (const auto& poly : polygons_) triangulate_polygon(poly, triangles);
+    return triangles;
+  }
+
+  /// 1-to-4 subdivision: a new vertex per edge at its midpoint, migrated onto G with P from
+  /// the active leaves whose closed cube contains it.
+  std::vector<std::array<int, 3>> subdivide(const std::vector<std::array<int, 3>>& triangles) {
+    std::map<std::pair<int, int>, int> midpoint;
+    const std::size_t first_new = position_.size();
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto [it, inserted] = midpoint.emplace(key, static_cast<int>(start_.size()));
+      if (inserted) {
+        start_.push_back((position_[a] + position_[b]) / 2);
+        primitives_.emplace_back();
+        leaf_side_.push_back(0);
+      }
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> out;
+    out.reserve(4 * triangles.size());
+    for (const auto& t : triangles) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      out.push_back({t[0], ab, ca});
+      out.push_back({ab, t[1], bc});
+      out.push_back({ca, bc, t[2]});
+      out.push_back({ab, bc, ca});
+    }
+    tbb::parallel_for(first_new, start_.size(), [&](std::size_t i) {
+      point_primitives(start_[i], primitives_[i], leaf_side_[i]);
+    });
+    migrate_range(first_new);
+    return out;
+  }
+
+  // --- fold-overs ----------------------------------------------------------------------------
+
+  PolygonSoup soup_of(const std::vector<std::array<int, 3>>& triangles) const {
+    PolygonSoup soup;
+    soup.points = position_;
+    soup.faces.reserve(triangles.size());
+    for (const auto& t : triangles) soup.faces.push_back({t[0], t[1], t[2]});
+    return soup;
+  }
+
+  /// Vertices of the intersecting and degenerate triangles, sorted.
+  static std::vector<int> involved_vertices(const TriangleDefects& d,
+                                            const std::vector<std::array<int, 3>>& triangles) {
+    std::vector<int> out;
+    for (const auto& p : d.intersecting_pairs)
+      for (int f : p) out.insert(out.end(), triangles[f].begin(), triangles[f].end());
+    for (int f : d.degenerate_faces) out.insert(out.end(), triangles[f].begin(), triangles[f].end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  /// Repairs fold-overs in two stages, re-detecting after each round:
+  /// 1. on G: the vertices of defective triangles and their neighbours move to the closest
+  ///    point of G to the centroid of their neighbours (untangles while staying on G);
+  /// 2. off G, as a last resort: the vertices still involved are pulled back along their
+  ///    migration path, halving their step each round.
+  void repair(const std::vector<std::array<int, 3>>& triangles) {
+    const auto t0 = Clock::now();
+    TriangleDefects d = find_triangle_defects(soup_of(triangles));
+    stats_.intersecting_before += d.intersecting_pairs.size();
+    stats_.degenerate_before += d.degenerate_faces.size();
+    stats_.intersecting_after = d.intersecting_pairs.size();
+    stats_.degenerate_after = d.degenerate_faces.size();
+    if (d.intersecting_pairs.empty() && d.degenerate_faces.empty()) {
+      stats_.seconds_repair += seconds_since(t0);
+      return;
+    }
+
+    std::vector<std::vector<int>> ring(position_.size());
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        ring[t[k]].push_back(t[(k + 1) % 3]);
+        ring[t[k]].push_back(t[(k + 2) % 3]);
+      }
+    for (auto& r : ring) {
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+    }
+    std::vector<std::vector<int>> faces_of(position_.size());
+    for (std::size_t f = 0; f < triangles.size(); ++f)
+      for (int v : triangles[f]) faces_of[v].push_back(static_cast<int>(f));
+    // Defects can only change around moved vertices: re-detect there, keep the rest.
+    auto redetect = [&](const std::vector<int>& moved_now) {
+      std::vector<int> dirty;
+      for (int v : moved_now) dirty.insert(dirty.end(), faces_of[v].begin(), faces_of[v].end());
+      std::sort(dirty.begin(), dirty.end());
+      dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
+      auto is_dirty = [&](int f) { return std::binary_search(dirty.begin(), dirty.end(), f); };
+      TriangleDefects local = find_triangle_defects(soup_of(triangles), dirty);
+      for (const auto& p : d.intersecting_pairs)
+        if (!is_dirty(p[0]) && !is_dirty(p[1])) local.intersecting_pairs.push_back(p);
+      for (int f : d.degenerate_faces)
+        if (!is_dirty(f)) local.degenerate_faces.push_back(f);
+      std::sort(local.intersecting_pairs.begin(), local.intersecting_pairs.end());
+      std::sort(local.degenerate_faces.begin(), local.degenerate_faces.end());
+      d = std::move(local);
+    };
+    std::vector<char> moved(position_.size(), 0);
+    for (int round = 0; round < opt_.repair_rounds; ++round) {
+      if (d.intersecting_pairs.empty() && d.degenerate_faces.empty()) break;
+      std::vector<int> involved = involved_vertices(d, triangles);
+      std::vector<int> grown = involved;
+      for (int v : involved) grown.insert(grown.end(), ring[v].begin(), ring[v].end());
+      std::sort(grown.begin(), grown.end());
+      grown.erase(std::unique(grown.begin(), grown.end()), grown.end());
+      std::vector<Vec3> next(grown.size());
+      tbb::parallel_for(std::size_t(0), grown.size(), [&](std::size_t i) {
+        Vec3 centroid = Vec3::Zero();
+        for (int w : ring[grown[i]]) centroid += position_[w];
+        next[i] = shape_->closest_point(centroid / static_cast<double>(ring[grown[i]].size()));
+      });
+      for (std::size_t i = 0; i < grown.size(); ++i) {
+        position_[grown[i]] = next[i];
+        moved[grown[i]] = 1;
+      }
+      redetect(grown);
+    }
+    const std::vector<Vec3> target = position_;
+    std::vector<double> step(position_.size(), 1.0);
+    for (int round = 0; round < opt_.repair_rounds; ++round) {
+      if (d.intersecting_pairs.empty() && d.degenerate_faces.empty()) break;
+      const std::vector<int> involved = involved_vertices(d, triangles);
+      for (int v : involved) {
+        step[v] /= 2;
+        moved[v] = 1;
+        position_[v] = start_[v] + step[v] * (target[v] - start_[v]);
+        ++stats_.pulled_back;
+      }
+      redetect(involved);
+    }
+    stats_.intersecting_after = d.intersecting_pairs.size();
+    stats_.degenerate_after = d.degenerate_faces.size();
+    stats_.repaired_vertices += static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));
+    stats_.seconds_repair += seconds_since(t0);
+  }
+
+  RefinedMesh build(const std::vector<std::array<int, 3>>& triangles) {
+    PolygonSoup soup = soup_of(triangles);
+    for (auto& p : soup.points) p = tree_.to_world(p);
+    RefinedMesh out;
+    try {
+      out.mesh = mesh_from_soup(soup, "M2");
+    } catch (const InvalidInput& e) {
+      throw TopologyError(std::string("M2 construction: ") + e.what());
+    }
+    out.stats = stats_;
+    return out;
+  }
+
+  const CoarseMesh& m1_;
+  const Octree& tree_;
+  const RefineOptions& opt_;
+  std::unique_ptr<TargetShape> shape_;
+  RefineStats stats_;
+  std::vector<Vec3> start_;       // before migration (root frame)
+  std::vector<Vec3> position_;    // after migration
+  std::vector<double> leaf_side_;
+  std::vector<std::vector<PrimitiveId>> primitives_;
+  std::vector<std::vector<int>> polygons_;
+};
+
+}  // namespace
+
+RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const MedialSurface& atoms,
+                        const RefineOptions& opt) {
+  validate(atoms);
+  if (opt.subdivisions < 0) throw InvalidInput("refine: subdivisions must be >= 0");
+  if (!(opt.max_travel > 0)) throw InvalidInput("refine: max travel must be > 0");
+  if (opt.repair_rounds < 0) throw InvalidInput("refine: repair rounds must be >= 0");
+  if (m1.faces.size() != m1.mesh.n_faces()) throw InvalidInput("refine: M1 and its faces disagree");
+  return Refiner(m1, tree, atoms, opt).run();
+}
+
+}  // namespace mg

@@ -1,0 +1,534 @@
+#include "garbing/target_shape.h"
+
+#include "garbing/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <queue>
+
+namespace mg {
+
+using Vec3 = Eigen::Vector3d;
+
+ConeSource parse_cone_source(const std::string& name) {
+  if (name == "rt") return ConeSource::regular_triangulation;
+  if (name == "all") return ConeSource::all_pairs;
+  if (name == "edges") return ConeSource::ma_edges;
+  if (name == "none") return ConeSource::none;
+  throw InvalidInput("unknown cone source '" + name + "' (expected rt, all, edges or none)");
+}
+
+Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) {
+  Cone c;
+  c.a = a;
+  c.b = b;
+  c.c1 = first.centre;
+  c.r1 = first.radius;
+  const Vec3 axis = second.centre - first.centre;
+  c.length = axis.norm();
+  c.u = axis / c.length;
+  c.sin_phi = (first.radius - second.radius) / c.length;
+  c.cos_phi = std::sqrt(std::max(0.0, 1 - c.sin_phi * c.sin_phi));
+  c.t_lo = first.radius * c.sin_phi;
+  c.rho_lo = first.radius * c.cos_phi;
+  c.t_hi = c.length + second.radius * c.sin_phi;
+  c.rho_hi = second.radius * c.cos_phi;
+  return c;
+}
+
+Vec3 migration_vector(const MedialAtom& sphere, const Vec3& v) {
+  const Vec3 d = v - sphere.centre;
+  const double d2 = d.squaredNorm();
+  if (d2 == 0) return Vec3::Zero();
+  return sphere.radius * d / d2;
+}
+
+Vec3 migration_vector(const Cone& cone, const Vec3& v) {
+  const Vec3 w = v - cone.c1;
+  const double x = w.dot(cone.u);
+  const double rho = (w - x * cone.u).norm();
+  if (rho == 0) return Vec3::Zero();
+  const double t = x - rho * cone.sin_phi / cone.cos_phi;  // foot of the normal on the axis
+  if (t < 0 || t > cone.length) return Vec3::Zero();
+  const Vec3 d = v - (cone.c1 + t * cone.u);
+  const double r = cone.r1 - t * cone.sin_phi;  // radius of the ball tangent there
+  return r * d / d.squaredNorm();
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Box {
+  Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
+  void grow(const Box& b) {
+    lo = lo.cwiseMin(b.lo);
+    hi = hi.cwiseMax(b.hi);
+  }
+  double squared_distance(const Vec3& p) const {
+    return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).squaredNorm();
+  }
+  bool overlaps(const Vec3& a, const Vec3& b) const {
+    return (lo.array() <= b.array()).all() && (a.array() <= hi.array()).all();
+  }
+  /// Parameter range of the ray o + t d inside the box, clipped to [t0, t1].
+  bool clip(const Vec3& o, const Vec3& inv_d, double& t0, double& t1) const {
+    for (int k = 0; k < 3; ++k) {
+      double a = (lo[k] - o[k]) * inv_d[k], b = (hi[k] - o[k]) * inv_d[k];
+      if (std::isnan(a) || std::isnan(b)) {  // d[k] == 0 and o on a slab plane
+        if (o[k] < lo[k] || o[k] > hi[k]) return false;
+        continue;
+      }
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a);
+      t1 = std::min(t1, b);
+      if (t0 > t1) return false;
+    }
+    return true;
+  }
+};
+
+Box sphere_box(const MedialAtom& s) {
+  return {s.centre - Vec3::Constant(s.radius), s.centre + Vec3::Constant(s.radius)};
+}
+
+double box_distance(const Vec3& lo, const Vec3& hi, const Vec3& p) {
+  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
+}
+
+/// Interval of the ray o + t d inside the closed ball; false if it misses.
+bool ray_sphere(const MedialAtom& s, const Vec3& o, const Vec3& d, double& t0, double& t1) {
+  const Vec3 oc = o - s.centre;
+  const double a = d.squaredNorm();
+  const double half_b = oc.dot(d);
+  const double c = oc.squaredNorm() - s.radius * s.radius;
+  const double disc = half_b * half_b - a * c;
+  if (disc < 0 || a == 0) return false;
+  const double root = std::sqrt(disc);
+  // Stable pair of roots.
+  const double q = half_b >= 0 ? -(half_b + root) : -(half_b - root);
+  double x0 = q / a, x1 = q != 0 ? c / q : -half_b / a;
+  if (x0 > x1) std::swap(x0, x1);
+  t0 = x0;
+  t1 = x1;
+  return true;
+}
+
+/// Interval of the ray o + t d inside the solid truncated cone; false if it misses.
+bool ray_cone(const Cone& k, const Vec3& o, const Vec3& d, double& t0, double& t1) {
+  const Vec3 w = o - k.c1;
+  const double ot = w.dot(k.u), dt = d.dot(k.u);
+  const Vec3 op = w - ot * k.u, dp = d - dt * k.u;
+  // Slab t_lo <= axial <= t_hi.
+  double lo = -kInf, hi = kInf;
+  if (dt != 0) {
+    double a = (k.t_lo - ot) / dt, b = (k.t_hi - ot) / dt;
+    if (a > b) std::swap(a, b);
+    lo = a;
+    hi = b;
+  } else if (ot < k.t_lo || ot > k.t_hi) {
+    return false;
+  }
+  // rho(t)^2 <= R(t)^2 with R(axial) = (r1 - axial sin) / cos, linear in t: alpha + beta t.
+  const double alpha = (k.r1 - ot * k.sin_phi) / k.cos_phi;
+  const double beta = -dt * k.sin_phi / k.cos_phi;
+  const double A = dp.squaredNorm() - beta * beta;
+  const double B = 2 * (op.dot(dp) - alpha * beta);
+  const double C = op.squaredNorm() - alpha * alpha;
+  const double scale = d.squaredNorm();
+  double qlo = -kInf, qhi = kInf;
+  if (std::abs(A) <= 1e-14 * scale) {  // parallel to a generator: linear
+    if (B > 0) qhi = -C / B;
+    else if (B < 0) qlo = -C / B;
+    else if (C > 0) return false;
+  } else {
+    const double disc = B * B - 4 * A * C;
+    if (A > 0) {
+      if (disc < 0) return false;
+      const double root = std::sqrt(disc);
+      qlo = (-B - root) / (2 * A);
+      qhi = (-B + root) / (2 * A);
+    } else if (disc >= 0) {
+      // q <= 0 outside the roots: two rays, one per nappe; keep the one where R >= 0.
+      const double root = std::sqrt(disc);
+      const double s0 = (-B + root) / (2 * A), s1 = (-B - root) / (2 * A);  // s0 <= s1
+      const double ra = std::max(lo, -kInf), rb = std::min(hi, s0);
+      const double sa = std::max(lo, s1), sb = std::min(hi, kInf);
+      auto radius_ok = [&](double x0, double x1) {
+        if (!(x0 <= x1)) return false;
+        const double mid = std::isfinite(x0) && std::isfinite(x1) ? (x0 + x1) / 2
+                           : std::isfinite(x0) ? x0 : x1;
+        return alpha + beta * mid >= 0;
+      };
+      if (radius_ok(ra, rb)) {
+        qhi = s0;
+      } else if (radius_ok(sa, sb)) {
+        qlo = s1;
+      } else {
+        return false;
+      }
+    }  // disc < 0 with A < 0: q < 0 everywhere
+  }
+  t0 = std::max(lo, qlo);
+  t1 = std::min(hi, qhi);
+  return t0 <= t1;
+}
+
+/// Closest point of the solid cone to p, and whether p is inside it.
+Vec3 cone_closest_solid_point(const Cone& k, const Vec3& p) {
+  const Vec3 w = p - k.c1;
+  const double x = w.dot(k.u);
+  Vec3 radial = w - x * k.u;
+  double rho = radial.norm();
+  const Vec3 e = rho > 0 ? Vec3(radial / rho) : Vec3(k.u.unitOrthogonal());
+  // In the (axial, radial) half-plane the solid is the quadrilateral
+  // (t_lo, 0) (t_hi, 0) (t_hi, rho_hi) (t_lo, rho_lo).
+  const double R = (k.r1 - x * k.sin_phi) / k.cos_phi;
+  if (x >= k.t_lo && x <= k.t_hi && rho <= R) return p;
+  // Candidates: clamp to caps, to the generator segment.
+  auto to3 = [&](double t, double r) { return Vec3(k.c1 + t * k.u + r * e); };
+  double best = kInf;
+  Vec3 out = p;
+  auto consider = [&](double t, double r) {
+    const double d2 = (t - x) * (t - x) + (r - rho) * (r - rho);
+    if (d2 < best) {
+      best = d2;
+      out = to3(t, r);
+    }
+  };
+  consider(k.t_lo, std::min(rho, k.rho_lo));
+  consider(k.t_hi, std::min(rho, k.rho_hi));
+  const double gt = k.t_hi - k.t_lo, gr = k.rho_hi - k.rho_lo;
+  const double s = std::clamp(((x - k.t_lo) * gt + (rho - k.rho_lo) * gr) / (gt * gt + gr * gr), 0.0, 1.0);
+  consider(k.t_lo + s * gt, k.rho_lo + s * gr);
+  return out;
+}
+
+/// Closest point on the cone's lateral surface to p (p may be inside).
+Vec3 cone_closest_lateral_point(const Cone& k, const Vec3& p) {
+  const Vec3 w = p - k.c1;
+  const double x = w.dot(k.u);
+  const Vec3 radial = w - x * k.u;
+  const double rho = radial.norm();
+  const Vec3 e = rho > 0 ? Vec3(radial / rho) : Vec3(k.u.unitOrthogonal());
+  const double gt = k.t_hi - k.t_lo, gr = k.rho_hi - k.rho_lo;
+  const double s = std::clamp(((x - k.t_lo) * gt + (rho - k.rho_lo) * gr) / (gt * gt + gr * gr), 0.0, 1.0);
+  return k.c1 + (k.t_lo + s * gt) * k.u + (k.rho_lo + s * gr) * e;
+}
+
+/// The 26 directions of a cube's faces, edges and corners, unit length.
+const std::vector<Vec3>& probe_directions() {
+  static const std::vector<Vec3> dirs = [] {
+    std::vector<Vec3> out;
+    for (int x = -1; x <= 1; ++x)
+      for (int y = -1; y <= 1; ++y)
+        for (int z = -1; z <= 1; ++z)
+          if (x || y || z) out.push_back(Vec3(x, y, z).normalized());
+    return out;
+  }();
+  return dirs;
+}
+
+}  // namespace
+
+/// A binary bounding-volume hierarchy over the primitives' boxes (median split on the longest
+/// axis of the box centres; up to 4 primitives per leaf).
+struct TargetShape::Bvh {
+  struct Node {
+    Box box;
+    int first = 0, count = 0;  // leaf: primitives order[first .. first + count)
+    int right = -1;            // inner node: left child is the next node, right child here
+  };
+  std::vector<Node> nodes;
+  std::vector<int> order;
+  std::vector<Box> boxes;
+
+  void build(std::vector<Box> primitive_boxes) {
+    boxes = std::move(primitive_boxes);
+    order.resize(boxes.size());
+    std::iota(order.begin(), order.end(), 0);
+    nodes.reserve(2 * boxes.size() / 4 + 2);
+    if (!boxes.empty()) build(0, static_cast<int>(boxes.size()));
+  }
+
+  int build(int first, int last) {
+    const int id = static_cast<int>(nodes.size());
+    nodes.emplace_back();
+    Box box, centres;
+    for (int i = first; i < last; ++i) {
+      box.grow(boxes[order[i]]);
+      const Vec3 c = (boxes[order[i]].lo + boxes[order[i]].hi) / 2;
+      centres.grow({c, c});
+    }
+    nodes[id].box = box;
+    if (last - first <= 4) {
+      nodes[id].first = first;
+      nodes[id].count = last - first;
+      return id;
+    }
+    Eigen::Index axis;
+    (centres.hi - centres.lo).maxCoeff(&axis);
+    const int mid = (first + last) / 2;
+    std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + last,
+                     [&](int a, int b) {
+                       const double ca = boxes[a].lo[axis] + boxes[a].hi[axis];
+                       const double cb = boxes[b].lo[axis] + boxes[b].hi[axis];
+                       return ca < cb || (ca == cb && a < b);
+                     });
+    build(first, mid);
+    const int right = build(mid, last);
+    nodes[id].right = right;
+    return id;
+  }
+
+  /// Visits every primitive whose box passes `keep_box`, in no particular order.
+  template <class KeepBox, class Visit>
+  void visit(KeepBox&& keep_box, Visit&& visit_primitive) const {
+    if (nodes.empty()) return;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes[stack[--top]];
+      if (!keep_box(n.box)) continue;
+      if (n.right < 0) {
+        for (int i = n.first; i < n.first + n.count; ++i)
+          if (keep_box(boxes[order[i]])) visit_primitive(order[i]);
+      } else {
+        stack[top++] = n.right;
+        stack[top++] = static_cast<int>(&n - nodes.data()) + 1;
+      }
+    }
+  }
+};
+
+TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs)
+    : spheres_(atoms.atoms), bvh_(std::make_unique<Bvh>()) {
+  cones_.reserve(pairs.size());
+  for (const auto& p : pairs) cones_.push_back(make_cone(atoms.atoms[p[0]], atoms.atoms[p[1]], p[0], p[1]));
+  std::vector<Box> boxes;
+  boxes.reserve(spheres_.size() + cones_.size());
+  for (const auto& s : spheres_) boxes.push_back(sphere_box(s));
+  for (const auto& c : cones_) {
+    Box b = sphere_box(atoms.atoms[c.a]);
+    b.grow(sphere_box(atoms.atoms[c.b]));
+    boxes.push_back(b);
+  }
+  bvh_->build(std::move(boxes));
+}
+
+TargetShape::~TargetShape() = default;
+TargetShape::TargetShape(TargetShape&&) noexcept = default;
+TargetShape& TargetShape::operator=(TargetShape&&) noexcept = default;
+
+Vec3 TargetShape::migration_vector(PrimitiveId i, const Vec3& v) const {
+  return is_sphere(i) ? mg::migration_vector(spheres_[i], v) : mg::migration_vector(cone(i), v);
+}
+
+bool TargetShape::primitive_contains(PrimitiveId i, const Vec3& p, double eps) const {
+  if (is_sphere(i)) {
+    const double r = spheres_[i].radius - eps;
+    return r > 0 && (p - spheres_[i].centre).squaredNorm() < r * r;
+  }
+  const Cone& k = cone(i);
+  const Vec3 w = p - k.c1;
+  const double x = w.dot(k.u);
+  if (x < k.t_lo + eps || x > k.t_hi - eps) return false;
+  const double rho = (w - x * k.u).norm();
+  // Distance to the lateral surface in the (axial, radial) plane: (R(x) - rho) cos(phi).
+  return ((k.r1 - x * k.sin_phi) / k.cos_phi - rho) * k.cos_phi > eps;
+}
+
+bool TargetShape::contains(const Vec3& p) const {
+  bool inside = false;
+  bvh_->visit([&](const Box& b) { return !inside && b.squared_distance(p) == 0; },
+              [&](int i) {
+                if (inside) return;
+                if (is_sphere(i)) {
+                  const double r = spheres_[i].radius;
+                  inside = (p - spheres_[i].centre).squaredNorm() <= r * r;
+                } else {
+                  inside = cone_closest_solid_point(cone(i), p) == p;
+                }
+              });
+  return inside;
+}
+
+namespace {
+
+/// Intervals [t_in, t_out] (t_out >= 0) of the ray inside each primitive met on [0, t_max].
+template <class Shape, class Bvh>
+std::vector<std::pair<double, double>> ray_runs(const Shape& shape, const Bvh& bvh, const Vec3& origin,
+                                                const Vec3& dir, double t_max) {
+  const Vec3 inv = dir.cwiseInverse();
+  std::vector<std::pair<double, double>> runs;
+  bvh.visit(
+      [&](const Box& b) {
+        double a = 0, z = t_max;
+        return b.clip(origin, inv, a, z);
+      },
+      [&](int i) {
+        double a, z;
+        const bool hit = shape.is_sphere(i) ? ray_sphere(shape.sphere(i), origin, dir, a, z)
+                                            : ray_cone(shape.cone(i), origin, dir, a, z);
+        if (hit && z >= 0) runs.emplace_back(a, z);
+      });
+  return runs;
+}
+
+}  // namespace
+
+bool TargetShape::first_entry(const Vec3& origin, const Vec3& dir, double t_max, double& t) const {
+  double first = kInf;
+  for (const auto& r : ray_runs(*this, *bvh_, origin, dir, t_max))
+    if (r.first >= 0) first = std::min(first, r.first);
+  if (first > t_max) return false;
+  t = first;
+  return true;
+}
+
+bool TargetShape::run_end(const Vec3& origin, const Vec3& dir, double t_max, double& t) const {
+  auto runs = ray_runs(*this, *bvh_, origin, dir, t_max);
+  std::sort(runs.begin(), runs.end());
+  const double slack = 1e-12 * (1 + t_max);
+  double end = 0;
+  bool started = false;
+  for (const auto& r : runs) {
+    if (r.first > end + slack) break;
+    started = started || r.first <= slack;
+    end = std::max(end, r.second);
+  }
+  if (!started || end > t_max) return false;  // not inside, or the run goes on past t_max
+  t = end;
+  return true;
+}
+
+Vec3 TargetShape::closest_point(const Vec3& p) const {
+  if (!contains(p)) {
+    // Outside: the nearest point of any primitive's solid, by branch and bound.
+    double best = kInf;
+    Vec3 out = p;
+    std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> queue;
+    if (!bvh_->nodes.empty()) queue.push({bvh_->nodes[0].box.squared_distance(p), 0});
+    while (!queue.empty()) {
+      const auto [d2, id] = queue.top();
+      queue.pop();
+      if (d2 >= best) break;
+      const auto& n = bvh_->nodes[id];
+      if (n.right >= 0) {
+        queue.push({bvh_->nodes[id + 1].box.squared_distance(p), id + 1});
+        queue.push({bvh_->nodes[n.right].box.squared_distance(p), n.right});
+        continue;
+      }
+      for (int k = n.first; k < n.first + n.count; ++k) {
+        const int i = bvh_->order[k];
+        Vec3 q;
+        if (is_sphere(i)) {
+          const Vec3 d = p - spheres_[i].centre;
+          q = spheres_[i].centre + spheres_[i].radius * d / d.norm();
+        } else {
+          q = cone_closest_solid_point(cone(i), p);
+        }
+        const double e2 = (q - p).squaredNorm();
+        if (e2 < best) {
+          best = e2;
+          out = q;
+        }
+      }
+    }
+    return out;
+  }
+  // Inside: exposed closest surface points of the primitives containing p, and exits along
+  // probe directions; the nearest wins.
+  double best = kInf;
+  Vec3 out = p;
+  std::vector<int> around;
+  bvh_->visit([&](const Box& b) { return b.squared_distance(p) == 0; },
+              [&](int i) { around.push_back(i); });
+  std::sort(around.begin(), around.end());
+  for (int i : around) {
+    Vec3 q;
+    if (is_sphere(i)) {
+      const Vec3 d = p - spheres_[i].centre;
+      if (d.squaredNorm() == 0) continue;
+      q = spheres_[i].centre + spheres_[i].radius * d / d.norm();
+    } else {
+      q = cone_closest_lateral_point(cone(i), p);
+    }
+    const double e2 = (q - p).squaredNorm();
+    if (e2 >= best) continue;
+    const double eps = 1e-12 * (1 + std::sqrt(e2));
+    bool exposed = true;
+    bvh_->visit([&](const Box& b) { return exposed && b.squared_distance(q) == 0; },
+                [&](int j) { exposed = exposed && (j == i || !primitive_contains(j, q, eps)); });
+    if (exposed) {
+      best = e2;
+      out = q;
+    }
+  }
+  const double reach = std::isfinite(best) ? std::sqrt(best) : kInf;
+  for (const Vec3& d : probe_directions()) {
+    double t;
+    const double t_max = std::isfinite(reach) ? reach : 1e300;
+    if (run_end(p, d, t_max, t) && t * t < best) {
+      best = t * t;
+      out = p + t * d;
+    }
+  }
+  return out;
+}
+
+void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi, std::vector<PrimitiveId>& out) const {
+  const std::size_t start = out.size();
+  bvh_->visit([&](const Box& b) { return b.overlaps(lo, hi); },
+              [&](int i) {
+                if (is_sphere(i)) {
+                  if (box_distance(lo, hi, spheres_[i].centre) <= spheres_[i].radius) out.push_back(i);
+                  return;
+                }
+                const Cone& k = cone(i);
+                const MedialAtom& s1 = spheres_[k.a];
+                const MedialAtom& s2 = spheres_[k.b];
+                if (box_distance(lo, hi, s1.centre) <= s1.radius || box_distance(lo, hi, s2.centre) <= s2.radius) {
+                  out.push_back(i);
+                  return;
+                }
+                // The hull of the two balls is the union of the interpolated balls; the gap
+                // f(s) = dist(c(s), box) - r(s) is convex: golden-section search.
+                auto f = [&](double s) {
+                  return box_distance(lo, hi, s1.centre + s * (s2.centre - s1.centre)) -
+                         (s1.radius + s * (s2.radius - s1.radius));
+                };
+                double a = 0, b = 1;
+                const double g = (std::sqrt(5.0) - 1) / 2;
+                double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = f(x1), f2 = f(x2);
+                for (int it = 0; it < 60 && f1 > 0 && f2 > 0; ++it) {
+                  if (f1 < f2) {
+                    b = x2;
+                    x2 = x1;
+                    f2 = f1;
+                    x1 = b - g * (b - a);
+                    f1 = f(x1);
+                  } else {
+                    a = x1;
+                    x1 = x2;
+                    f1 = f2;
+                    x2 = a + g * (b - a);
+                    f2 = f(x2);
+                  }
+                }
+                if (f1 <= 0 || f2 <= 0) out.push_back(i);
+              });
+  std::sort(out.begin() + static_cast<long>(start), out.end());
+}
+
+void TargetShape::cones_meeting_box(const Vec3& lo, const Vec3& hi, std::vector<PrimitiveId>& out) const {
+  std::vector<PrimitiveId> all;
+  primitives_meeting_box(lo, hi, all);
+  for (int i : all)
+    if (!is_sphere(i)) out.push_back(i);
+}
+
+}  // namespace mg

@@ -1,0 +1,130 @@
+#include "garbing/errors.h"
+#include "garbing/mesh_topology.h"
+#include "garbing/refine_mesh.h"
+#include "garbing/triangle_defects.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "atom_sets.h"
+
+namespace {
+
+using Eigen::Vector3d;
+using mg_test::atoms;
+
+mg::RefinedMesh garb(const mg::MedialSurface& s, const mg::RefineOptions& ropt = {},
+                     mg::OctreeOptions topt = {}) {
+  const mg::Octree tree = mg::build_octree(s, topt);
+  return mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s, ropt);
+}
+
+std::vector<Vector3d> points(const mg::Mesh& m) {
+  std::vector<Vector3d> out;
+  for (const auto v : m.vertices()) {
+    const auto& p = m.point(v);
+    out.emplace_back(p[0], p[1], p[2]);
+  }
+  return out;
+}
+
+void expect_sound(const mg::Mesh& m, const std::string& what) {
+  const auto soup = mg::soup_from_mesh(m);
+  const auto t = mg::mesh_topology(soup);
+  EXPECT_TRUE(t.closed && t.manifold && t.oriented) << what << ": " << t.first_problem;
+  const auto d = mg::find_triangle_defects(soup);
+  EXPECT_TRUE(d.intersecting_pairs.empty()) << what << ": " << d.intersecting_pairs.size();
+  EXPECT_TRUE(d.degenerate_faces.empty()) << what << ": " << d.degenerate_faces.size();
+}
+
+TEST(RefineMesh, OneSphereReproducesThePapersRowOnTheSphere) {
+  const mg::MedialAtom ball{Vector3d(0.5, -1, 2), 1.5};
+  const auto m2 = garb(atoms({ball}));
+  EXPECT_EQ(m2.mesh.n_vertices(), 1344u);
+  EXPECT_EQ(m2.mesh.n_faces(), 2684u);
+  for (const Vector3d& p : points(m2.mesh))
+    EXPECT_NEAR((p - ball.centre).norm(), ball.radius, 1e-9 * ball.radius);
+  expect_sound(m2.mesh, "sphere");
+  EXPECT_EQ(mg::mesh_topology(mg::soup_from_mesh(m2.mesh)).genus, 0);
+}
+
+TEST(RefineMesh, TwoOverlappingSpheresLandExactlyOnG) {
+  const auto s = atoms({{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.2, 0.3, -0.2), 0.7}});
+  const auto pairs = mg::cone_pairs(s, {});
+  ASSERT_EQ(pairs.size(), 1u);
+  const mg::TargetShape shape(s, pairs);
+  const auto m2 = garb(s);
+  EXPECT_EQ(m2.stats.cones, 1u);
+  for (const Vector3d& p : points(m2.mesh)) {
+    EXPECT_LT(shape.distance(p), 1e-9) << p.transpose();
+    // Not strictly inside any primitive, beyond rounding.
+    for (int g = 0; g < 3; ++g) EXPECT_FALSE(shape.primitive_contains(g, p, 1e-9)) << p.transpose();
+  }
+  expect_sound(m2.mesh, "two spheres");
+}
+
+TEST(RefineMesh, RingOfSpheresHasGenusOneAndNoFolds) {
+  const auto m2 = garb(mg_test::ring(60, 1.0, 0.3));
+  expect_sound(m2.mesh, "ring");
+  const auto t = mg::mesh_topology(mg::soup_from_mesh(m2.mesh));
+  EXPECT_EQ(t.genus, 1);
+  EXPECT_EQ(t.faces, 2 * t.vertices - 4 + 4 * 1);
+}
+
+/// A coarse octree keeps these meshes small (the automatic depth gives tens of thousands).
+mg::OctreeOptions coarse() {
+  mg::OctreeOptions opt;
+  opt.min_depth = 5;
+  return opt;
+}
+
+TEST(RefineMesh, AblationsAndSubdivisionStayClosed) {
+  const auto s = mg_test::blob(12, 0.2, 0.4, 3);
+  mg::RefineOptions opt;
+  opt.cones.source = mg::ConeSource::none;
+  expect_sound(garb(s, opt, coarse()).mesh, "spheres only");
+  opt.subdivisions = 1;
+  const auto refined = garb(s, opt, coarse());
+  expect_sound(refined.mesh, "spheres only, refine 1");
+  EXPECT_GT(refined.stats.vertices_migrated, refined.mesh.n_vertices() / 2);
+  opt = {};
+  opt.dual = false;
+  for (const auto* what : {"no dual", "no dual, spheres only"}) {
+    const auto no_dual = garb(s, opt, coarse());
+    const auto t = mg::mesh_topology(mg::soup_from_mesh(no_dual.mesh));
+    EXPECT_TRUE(t.closed && t.oriented) << what << ": " << t.first_problem;
+    opt.cones.source = mg::ConeSource::none;
+  }
+}
+
+TEST(RefineMesh, SameOutputAtOneAndTwoThreads) {
+  const auto s = mg_test::blob(20, 0.15, 0.35, 9);
+  mg::PolygonSoup one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = mg::soup_from_mesh(garb(s, {}, coarse()).mesh);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = mg::soup_from_mesh(garb(s, {}, coarse()).mesh);
+  }
+  EXPECT_EQ(one.faces, two.faces);
+  EXPECT_EQ(one.points, two.points);
+}
+
+TEST(RefineMesh, RefusesBadOptions) {
+  const auto s = atoms({{Vector3d::Zero(), 1.0}});
+  const mg::Octree tree = mg::build_octree(s);
+  const auto m1 = mg::extract_coarse_mesh(tree);
+  mg::RefineOptions opt;
+  opt.subdivisions = -1;
+  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
+  opt = {};
+  opt.max_travel = 0;
+  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
+  opt = {};
+  opt.cones.min_circle_ratio = 2;
+  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
+}
+
+}  // namespace

@@ -1,0 +1,123 @@
+#include "garbing/errors.h"
+#include "garbing/target_shape.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "atom_sets.h"
+
+namespace {
+
+using Eigen::Vector3d;
+using mg_test::atoms;
+
+// The cone of the example: r1 = 1 at the origin, r2 = 0.5 at (2, 0, 0), L = 2.
+const mg::MedialAtom kA{Vector3d(0, 0, 0), 1.0};
+const mg::MedialAtom kB{Vector3d(2, 0, 0), 0.5};
+
+TEST(MigrationVector, SphereIsRadiusOverDistanceAwayFromTheCentre) {
+  const mg::MedialAtom s{Vector3d(0, 0, 0), 2.0};
+  EXPECT_TRUE(mg::migration_vector(s, Vector3d(1, 0, 0)).isApprox(Vector3d(2, 0, 0), 1e-15));
+  EXPECT_TRUE(mg::migration_vector(s, Vector3d(0, 0, 4)).isApprox(Vector3d(0, 0, 0.5), 1e-15));
+  EXPECT_EQ(mg::migration_vector(s, Vector3d(0, 0, 0)), Vector3d::Zero());  // on the centre
+}
+
+TEST(MigrationVector, ConeMatchesHandComputedValues) {
+  const mg::Cone cone = mg::make_cone(kA, kB, 0, 1);
+  EXPECT_NEAR(cone.sin_phi, 0.25, 1e-15);
+  // v = (1, 1, 0): foot t* = 1 - tan(phi) = 0.7418011102528389, r(t*) = 1 - t* / 4.
+  EXPECT_TRUE(mg::migration_vector(cone, Vector3d(1, 1, 0))
+                  .isApprox(Vector3d(0.19717109, 0.76364036, 0), 1e-7));
+  EXPECT_TRUE(mg::migration_vector(cone, Vector3d(0.5, 0, -0.8))
+                  .isApprox(Vector3d(0.28037972, 0, -1.08590599), 1e-7));
+  // Feet outside [0, L], and a point on the axis: zero.
+  EXPECT_EQ(mg::migration_vector(cone, Vector3d(-1, 0.5, 0)), Vector3d::Zero());
+  EXPECT_EQ(mg::migration_vector(cone, Vector3d(3, 0.1, 0)), Vector3d::Zero());
+  EXPECT_EQ(mg::migration_vector(cone, Vector3d(1, 0, 0)), Vector3d::Zero());
+}
+
+TEST(MigrationVector, ConeVectorPointsAtTheTangentBall) {
+  // |m_g| = r / |v - p|: the point p + r (v - p) / |v - p| lies on the cone's lateral surface.
+  const mg::Cone cone = mg::make_cone(kA, kB, 0, 1);
+  const mg::TargetShape shape(atoms({kA, kB}), {{0, 1}});
+  for (const Vector3d& v : {Vector3d(1, 1, 0), Vector3d(0.7, -0.3, 2), Vector3d(1.5, 0.2, 0.1)}) {
+    const Vector3d m = mg::migration_vector(cone, v);
+    ASSERT_GT(m.norm(), 0);
+    const double x = v.dot(cone.u), rho = (v - x * cone.u).norm();
+    const Vector3d p = (x - rho * cone.sin_phi / cone.cos_phi) * cone.u;
+    const Vector3d on = p + (m / m.norm()) * (m.norm() * (v - p).norm());
+    EXPECT_LT(shape.distance(on), 1e-12);
+  }
+}
+
+TEST(TargetShape, RaysThroughTheConeSolid) {
+  const mg::TargetShape cone_only(atoms({kA, kB}), {{0, 1}});
+  // Remove the spheres' contribution by starting between them on a ray across the waist:
+  // at x = 1 the cone's radius is (1 - 0.25) / cos(phi) = 0.7745966692414834.
+  double t;
+  ASSERT_TRUE(cone_only.first_entry(Vector3d(1, -5, 0), Vector3d(0, 1, 0), 10, t));
+  EXPECT_NEAR(t, 5 - 0.7745966692414834, 1e-12);
+  ASSERT_TRUE(cone_only.run_end(Vector3d(1, 0, 0), Vector3d(0, 1, 0), 10, t));
+  EXPECT_NEAR(t, 0.7745966692414834, 1e-12);
+  // Along the axis from the first centre: sphere [-1, 1], cone [0.25, 2.125], sphere [1.5, 2.5].
+  ASSERT_TRUE(cone_only.run_end(Vector3d(0, 0, 0), Vector3d(1, 0, 0), 10, t));
+  EXPECT_NEAR(t, 2.5, 1e-12);
+  // The run goes beyond the searched segment: not reported.
+  EXPECT_FALSE(cone_only.run_end(Vector3d(0, 0, 0), Vector3d(1, 0, 0), 2.0, t));
+  // A ray that misses everything.
+  EXPECT_FALSE(cone_only.first_entry(Vector3d(0, 5, 0), Vector3d(1, 0, 0), 100, t));
+}
+
+TEST(TargetShape, ContainsAndClosestPoint) {
+  const mg::TargetShape shape(atoms({kA, kB}), {{0, 1}});
+  EXPECT_TRUE(shape.contains(Vector3d(1, 0.7, 0)));   // in the cone, outside both balls
+  EXPECT_FALSE(shape.contains(Vector3d(1, 0.8, 0)));
+  const mg::TargetShape balls(atoms({kA, kB}), {});
+  EXPECT_FALSE(balls.contains(Vector3d(1, 0.7, 0)));  // the waist without the cone
+  // Outside: exact nearest point.
+  EXPECT_TRUE(shape.closest_point(Vector3d(-3, 0, 0)).isApprox(Vector3d(-1, 0, 0), 1e-15));
+  // Above the waist the nearest point is on the cone: distance (rho - R(x)) cos(phi).
+  const double cos_phi = std::sqrt(15.0) / 4;
+  EXPECT_NEAR(shape.distance(Vector3d(1, 2, 0)), (2 - 0.75 / cos_phi) * cos_phi, 1e-12);
+  // Inside a ball far from the other: the radial projection.
+  EXPECT_NEAR(shape.distance(Vector3d(-0.5, 0, 0)), 0.5, 1e-12);
+}
+
+TEST(ConePairs, SourcesAndFilter) {
+  // A chain of 4 balls plus one inside another (no cone with it) and one far away.
+  mg::MedialSurface s = atoms({{Vector3d(0, 0, 0), 1},
+                               {Vector3d(1.5, 0, 0), 1},
+                               {Vector3d(3, 0, 0), 1},
+                               {Vector3d(4.9, 0, 0), 1},
+                               {Vector3d(0.1, 0, 0), 0.2},
+                               {Vector3d(10, 0, 0), 1}});
+  s.edges = {{1, 0}, {2, 3}, {0, 4}};
+  mg::ConeOptions opt;
+  opt.source = mg::ConeSource::all_pairs;
+  const auto all = mg::cone_pairs(s, opt);
+  // 0-1, 1-2, 2-3 and 0-2 (distance 3 > 2: no), 1-4 (contains? no: 1.4 < 1.2? no) ...
+  for (const auto& p : all) {
+    const auto& a = s.atoms[p[0]];
+    const auto& b = s.atoms[p[1]];
+    const double L = (a.centre - b.centre).norm();
+    EXPECT_LT(L, a.radius + b.radius);
+    EXPECT_GT(L, std::abs(a.radius - b.radius));
+  }
+  EXPECT_NE(std::find(all.begin(), all.end(), std::array<int, 2>{2, 3}), all.end());
+  opt.source = mg::ConeSource::ma_edges;
+  EXPECT_EQ(mg::cone_pairs(s, opt), (std::vector<std::array<int, 2>>{{0, 1}, {2, 3}}));
+  opt.source = mg::ConeSource::regular_triangulation;
+  const auto rt = mg::cone_pairs(s, opt);
+  for (const auto& p : rt) EXPECT_NE(std::find(all.begin(), all.end(), p), all.end());
+  // Balls 2 and 3 barely intersect (circle radius 0.31 r), balls 0 and 1 well (0.66 r): a 0.5
+  // filter drops the first cone only.
+  opt.source = mg::ConeSource::all_pairs;
+  opt.min_circle_ratio = 0.5;
+  const auto kept = mg::cone_pairs(s, opt);
+  EXPECT_EQ(std::find(kept.begin(), kept.end(), std::array<int, 2>{2, 3}), kept.end());
+  EXPECT_NE(std::find(kept.begin(), kept.end(), std::array<int, 2>{0, 1}), kept.end());
+  EXPECT_THROW(mg::parse_cone_source("some"), mg::InvalidInput);
+}
+
+}  // namespace
