@@ -1,0 +1,135 @@
+// render: POV-Ray pictures of meshes and medial surfaces (union of spheres coloured by radius).
+//   render INPUT... -o OUTPUT.png [--pov SCENE.pov] [--width W] [--height H] [--view VIEW.json]
+//          [--direction X Y Z] [--fov DEG] [--flat] [--crease DEG] [--normals angle|area]
+//          [--transmit T] [--antialias T] [--threads N] [--povray EXE]
+#include "garbing/atomic_file.h"
+#include "garbing/cli_main.h"
+#include "render/povray_scene.h"
+#include "render/run_povray.h"
+#include "render/view.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace {
+
+void write_text(const std::string& text, const std::string& path) {
+  mg::AtomicFile file(path);
+  {
+    std::ofstream out(file.temp_path(), std::ios::binary);
+    if (!out) throw mg::IoError(path + ": cannot open for writing");
+    out << text;
+    if (!out.flush()) throw mg::IoError(path + ": write failed");
+  }
+  file.commit();
+}
+
+bool ends_with_png(std::string path) {
+  for (auto& c : path) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".png") == 0;
+}
+
+int render_main(int argc, char** argv) {
+  CLI::App app{
+      "Render meshes (.off .obj .ply .stl) and medial surfaces (.ma .xyzr: spheres coloured by "
+      "radius, red = small to blue = large) with POV-Ray, in one scene framed on the first input."};
+  app.option_defaults()->always_capture_default();
+  std::vector<std::string> inputs;
+  std::string output, pov_path, view_path, normals = "angle";
+  int width = 0, height = 0;
+  std::vector<double> direction;
+  mg::render::FramingOptions framing;
+  mg::render::SceneOptions scene_opt;
+  mg::render::PovrayOptions povray;
+  app.add_option("inputs", inputs, "meshes and medial surfaces; the first one is framed")->required();
+  app.add_option("-o,--output", output, "output image (.png)");
+  app.add_option("--pov", pov_path, "also write the POV-Ray scene here (alone if no -o)");
+  app.add_option("--width", width, "image width, pixels (default 800, or the view file's)")
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--height", height, "image height, pixels (default 600, or the view file's)")
+      ->check(CLI::Range(1, 16384));
+  app.add_option("--view", view_path,
+                 "camera file (JSON): read if it exists, else framed on the first input and written");
+  app.add_option("--direction", direction,
+                 "from the object towards the eye when framing (model axes; default 0.5 0.5 1)")
+      ->expected(3);
+  app.add_option("--fov", framing.angle, "horizontal field of view when framing, degrees")
+      ->check(CLI::Range(1.0, 150.0));
+  app.add_flag("--flat", scene_opt.flat_shading, "flat shading of meshes (no vertex normals)");
+  app.add_option("--crease", scene_opt.normals.crease_angle,
+                 "crease angle, degrees: sharper edges stay sharp (180 = smooth everywhere)")
+      ->check(CLI::Range(0.0, 180.0));
+  app.add_option("--normals", normals, "vertex normal weighting: angle | area")
+      ->check(CLI::IsMember({"angle", "area"}));
+  app.add_option("--transmit", scene_opt.mesh_transmit,
+                 "meshes let this fraction of light through, [0, 1) (e.g. 0.6 shows atoms inside)")
+      ->check(CLI::Range(0.0, 0.99));
+  app.add_option("--antialias", povray.antialias_threshold,
+                 "anti-aliasing threshold (POV-Ray +A, method 2, no jitter); 0 = off")
+      ->check(CLI::Range(0.0, 3.0));
+  app.add_option("--threads", povray.threads, "POV-Ray threads (0 = every core)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--povray", povray.executable, "POV-Ray executable (name on PATH, or a path)");
+  mg::parse_command_line(app, argc, argv);
+
+  if (output.empty() && pov_path.empty())
+    throw mg::InvalidInput("nothing to write: give -o OUTPUT.png and/or --pov SCENE.pov");
+  if (!output.empty() && !ends_with_png(output))
+    throw mg::InvalidInput(output + ": the output image must be a .png file");
+  std::vector<std::string> protected_paths = inputs;
+  if (!view_path.empty()) protected_paths.push_back(view_path);
+  if (!output.empty()) mg::check_output_path(output, protected_paths);
+  if (!pov_path.empty()) {
+    mg::check_output_path(pov_path, protected_paths);
+    if (pov_path == output) throw mg::InvalidInput(pov_path + ": --pov and -o name the same file");
+  }
+  if (!view_path.empty() && !std::filesystem::exists(view_path))
+    mg::check_output_path(view_path, inputs);
+  if (!direction.empty()) framing.direction = Eigen::Vector3d(direction[0], direction[1], direction[2]);
+  scene_opt.normals.weighting =
+      normals == "area" ? mg::render::NormalWeighting::area : mg::render::NormalWeighting::angle;
+
+  std::vector<mg::render::SceneObject> objects;
+  for (const std::string& input : inputs) objects.push_back(mg::render::read_scene_object(input));
+
+  mg::render::View view;
+  const bool view_exists = !view_path.empty() && std::filesystem::exists(view_path);
+  if (view_exists) {
+    if (!direction.empty() || app.count("--fov"))
+      throw mg::InvalidInput(view_path + ": --direction and --fov apply only when framing a new "
+                                         "view; this view file exists");
+    view = mg::render::read_view(view_path);
+    const int w = width ? width : (height ? 0 : view.width);
+    const int h = height ? height : (width ? 0 : view.height);
+    // One size given: the other follows the view's aspect ratio.
+    const int fw = w ? w : static_cast<int>(std::lround(static_cast<double>(h) * view.width / view.height));
+    const int fh = h ? h : static_cast<int>(std::lround(static_cast<double>(w) * view.height / view.width));
+    if (static_cast<long long>(fw) * view.height != static_cast<long long>(fh) * view.width)
+      throw mg::InvalidInput(view_path + ": framed for " + std::to_string(view.width) + "x" +
+                             std::to_string(view.height) + ", not for the aspect ratio of " +
+                             std::to_string(fw) + "x" + std::to_string(fh));
+    view.width = fw;
+    view.height = fh;
+  } else {
+    view = mg::render::frame_object(objects.front(), width ? width : 800, height ? height : 600,
+                                    framing);
+  }
+
+  const std::string scene = mg::render::povray_scene(objects, view, scene_opt);
+  if (!view_path.empty() && !view_exists) mg::render::write_view(view, view_path);
+  if (!pov_path.empty())
+    write_text("// render with: povray " +
+                   mg::render::povray_arguments(std::filesystem::path(pov_path).filename().string(),
+                                                "image.png", view.width, view.height, povray) +
+                   "\n" + scene,
+               pov_path);
+  if (!output.empty()) mg::render::render_png(scene, output, view.width, view.height, povray);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return mg::run_cli("render", [&] { return render_main(argc, argv); });
+}

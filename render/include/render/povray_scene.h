@@ -1,0 +1,70 @@
+#pragma once
+/// \file povray_scene.h
+/// POV-Ray 3.7 scenes of meshes (smooth `mesh2`) and medial surfaces (spheres coloured by
+/// radius, hot for small to cold for large, as the paper's Figure 1), framed by a View.
+
+#include "garbing/medial_surface.h"
+#include "garbing/mesh.h"
+#include "render/vertex_normals.h"
+#include "render/view.h"
+
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace mg::render {
+
+/// One object of a scene: a mesh (any polygon soup) or a medial surface.
+struct SceneObject {
+  std::string name;                                   ///< for comments and messages
+  std::variant<PolygonSoup, MedialSurface> geometry;  ///< model units
+};
+
+/// True if `path` ends in .ma or .xyzr (any case): a medial surface file.
+bool has_medial_extension(const std::string& path);
+
+/// Reads a scene object by extension: .off .obj .ply .stl through read_polygon_soup() (the mesh
+/// need not be manifold), .ma .xyzr through read_medial_surface(). `name` is the file name.
+/// @throws InvalidInput for an unknown extension or a malformed file; IoError if unreadable
+SceneObject read_scene_object(const std::string& path);
+
+/// Axis-aligned bounding box: the points of a mesh; the balls (centre +- radius) of atoms.
+/// @return an empty box for an object without points or atoms
+Eigen::AlignedBox3d bounding_box(const SceneObject& object);
+
+/// frame_view() of the object's vertices (mesh) or balls (atoms): the camera looks at the centre
+/// of its bounding box from opt.direction, as close as the whole object allows.
+/// @throws InvalidInput as frame_view(), prefixed by the object's name
+View frame_object(const SceneObject& object, int width, int height,
+                  const FramingOptions& opt = {});
+
+/// The colour of an atom, from its radius normalised to t in [0, 1] over the surface's radii:
+/// the hue goes from red (t = 0, smallest) through yellow, green and cyan to blue (t = 1,
+/// largest), full saturation and value. Linear RGB in [0, 1]. t is clamped to [0, 1].
+Eigen::Vector3d radius_colour(double t);
+
+/// Options of povray_scene().
+struct SceneOptions {
+  bool flat_shading = false;  ///< meshes without normals: every triangle flat
+  NormalOptions normals;      ///< weighting and crease angle of smooth shading
+  /// Fraction of light passing through meshes, [0, 1): 0 opaque; e.g. 0.6 shows the atoms of a
+  /// medial surface rendered inside the original object.
+  double mesh_transmit = 0.0;
+  int colour_levels = 256;  ///< atom colours are quantised to this many shared textures, >= 2
+};
+
+/// The complete text of a POV-Ray 3.7 scene: camera from `view` (image aspect from its width
+/// and height), a white background, a key light with shadows, a fill and a rim light placed
+/// relative to the camera, then every object. Meshes become `mesh2` (polygons fan-triangulated,
+/// per-corner normals from shading_normals() unless flat), coloured from a fixed palette by
+/// their rank among the meshes; medial surfaces a union of spheres coloured by radius_colour().
+/// The text depends only on the arguments (numbers printed in the "C" locale).
+/// @pre validate(view) holds; every face index in range; atoms valid (validate())
+/// @throws InvalidInput naming the object or option at fault
+std::string povray_scene(const std::vector<SceneObject>& objects, const View& view,
+                         const SceneOptions& opt = {});
+
+/// The `camera { ... }` block of povray_scene() alone (identical text for identical views).
+std::string povray_camera(const View& view);
+
+}  // namespace mg::render
