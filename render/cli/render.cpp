@@ -42,15 +42,17 @@ int render_main(int argc, char** argv) {
   mg::render::FramingOptions framing;
   mg::render::SceneOptions scene_opt;
   mg::render::PovrayOptions povray;
-  app.add_option("inputs", inputs, "meshes and medial surfaces; the first one is framed")->required();
+  app.add_option("inputs", inputs, "meshes and medial surfaces; the first one is framed")
+      ->required();
   app.add_option("-o,--output", output, "output image (.png)");
   app.add_option("--pov", pov_path, "also write the POV-Ray scene here (alone if no -o)");
   app.add_option("--width", width, "image width, pixels (default 800, or the view file's)")
       ->check(CLI::Range(1, 16384));
   app.add_option("--height", height, "image height, pixels (default 600, or the view file's)")
       ->check(CLI::Range(1, 16384));
-  app.add_option("--view", view_path,
-                 "camera file (JSON): read if it exists, else framed on the first input and written");
+  app.add_option(
+      "--view", view_path,
+      "camera file (JSON): read if it exists, else framed on the first input and written");
   app.add_option("--direction", direction,
                  "from the object towards the eye when framing (model axes; default 0.5 0.5 1)")
       ->expected(3);
@@ -86,7 +88,8 @@ int render_main(int argc, char** argv) {
   }
   if (!view_path.empty() && !std::filesystem::exists(view_path))
     mg::check_output_path(view_path, inputs);
-  if (!direction.empty()) framing.direction = Eigen::Vector3d(direction[0], direction[1], direction[2]);
+  if (!direction.empty())
+    framing.direction = Eigen::Vector3d(direction[0], direction[1], direction[2]);
   scene_opt.normals.weighting =
       normals == "area" ? mg::render::NormalWeighting::area : mg::render::NormalWeighting::angle;
 
@@ -97,14 +100,17 @@ int render_main(int argc, char** argv) {
   const bool view_exists = !view_path.empty() && std::filesystem::exists(view_path);
   if (view_exists) {
     if (!direction.empty() || app.count("--fov"))
-      throw mg::InvalidInput(view_path + ": --direction and --fov apply only when framing a new "
-                                         "view; this view file exists");
+      throw mg::InvalidInput(view_path +
+                             ": --direction and --fov apply only when framing a new "
+                             "view; this view file exists");
     view = mg::render::read_view(view_path);
     const int w = width ? width : (height ? 0 : view.width);
     const int h = height ? height : (width ? 0 : view.height);
     // One size given: the other follows the view's aspect ratio.
-    const int fw = w ? w : static_cast<int>(std::lround(static_cast<double>(h) * view.width / view.height));
-    const int fh = h ? h : static_cast<int>(std::lround(static_cast<double>(w) * view.height / view.width));
+    const int fw =
+        w ? w : static_cast<int>(std::lround(static_cast<double>(h) * view.width / view.height));
+    const int fh =
+        h ? h : static_cast<int>(std::lround(static_cast<double>(w) * view.height / view.width));
     if (static_cast<long long>(fw) * view.height != static_cast<long long>(fh) * view.width)
       throw mg::InvalidInput(view_path + ": framed for " + std::to_string(view.width) + "x" +
                              std::to_string(view.height) + ", not for the aspect ratio of " +

@@ -45,11 +45,14 @@ class Text {
   /// `x` with `digits` significant digits (colours, normals).
   Text& rounded(double x, int digits) {
     char buffer[32];
-    out_.append(buffer,
-                std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, digits).ptr);
+    out_.append(
+        buffer,
+        std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, digits).ptr);
     return *this;
   }
-  Text& vector(const Eigen::Vector3d& v) { return *this << '<' << v.x() << ", " << v.y() << ", " << v.z() << '>'; }
+  Text& vector(const Eigen::Vector3d& v) {
+    return *this << '<' << v.x() << ", " << v.y() << ", " << v.z() << '>';
+  }
   Text& rounded_vector(const Eigen::Vector3d& v, int digits) {
     *this << '<';
     rounded(v.x(), digits) << ", ";
@@ -112,9 +115,11 @@ void write_mesh(Text& out, const PolygonSoup& soup, const std::string& name, int
     const auto& face = soup.faces[f];
     for (std::size_t i = 1; i + 1 < face.size(); ++i) {
       const Eigen::Vector3d& a = soup.points[face[0]];
-      if ((soup.points[face[i]] - a).cross(soup.points[face[i + 1]] - a).squaredNorm() == 0) continue;
-      triangles.push_back({{face[0], face[i], face[i + 1]},
-                           {normals.corners[f][0], normals.corners[f][i], normals.corners[f][i + 1]}});
+      if ((soup.points[face[i]] - a).cross(soup.points[face[i + 1]] - a).squaredNorm() == 0)
+        continue;
+      triangles.push_back(
+          {{face[0], face[i], face[i + 1]},
+           {normals.corners[f][0], normals.corners[f][i], normals.corners[f][i + 1]}});
     }
   }
   if (triangles.empty()) throw InvalidInput(name + ": every face of the mesh has zero area");
@@ -137,7 +142,8 @@ void write_mesh(Text& out, const PolygonSoup& soup, const std::string& name, int
     out << "}\n";
   }
   out << "  face_indices { " << triangles.size();
-  for (const auto& t : triangles) out << ",\n    <" << t.v[0] << ", " << t.v[1] << ", " << t.v[2] << '>';
+  for (const auto& t : triangles)
+    out << ",\n    <" << t.v[0] << ", " << t.v[1] << ", " << t.v[2] << '>';
   out << "}\n";
   if (!opt.flat_shading && !normals.per_vertex) {
     out << "  normal_indices { " << triangles.size();
@@ -147,7 +153,11 @@ void write_mesh(Text& out, const PolygonSoup& soup, const std::string& name, int
   }
   const Eigen::Vector3d& c = kMeshPalette[rank % kMeshPalette.size()];
   out << "  texture { pigment { rgbt <" << c.x() << ", " << c.y() << ", " << c.z() << ", "
-      << opt.mesh_transmit << "> } finish { mg_finish } }\n}\n";
+      << opt.mesh_transmit << "> } finish { mg_finish } }\n";
+  // Smooth triangles shadowing their neighbours draw a jagged line along the shadow terminator;
+  // a smooth mesh therefore casts no shadow (flat and sphere geometry keeps its shadows).
+  if (!opt.flat_shading) out << "  no_shadow\n";
+  out << "}\n";
 }
 
 void write_medial_surface(Text& out, const MedialSurface& s, const std::string& name, int rank,
@@ -165,8 +175,8 @@ void write_medial_surface(Text& out, const MedialSurface& s, const std::string& 
   const int levels = opt.colour_levels;
   const std::string prefix = "mg_atoms" + std::to_string(rank) + "_";
   out << "// medial surface " << rank << ": " << name << " (" << s.atoms.size()
-      << " atoms as spheres; radius " << lo << " (red) to " << hi << " (blue), "
-      << levels << " colour levels)\n";
+      << " atoms as spheres; radius " << lo << " (red) to " << hi << " (blue), " << levels
+      << " colour levels)\n";
   std::vector<bool> used(levels, false);
   std::vector<int> level(s.atoms.size());
   for (std::size_t i = 0; i < s.atoms.size(); ++i) {
@@ -204,8 +214,9 @@ SceneObject read_scene_object(const std::string& path) {
   else if (has_mesh_extension(path))
     object.geometry = read_polygon_soup(path);
   else
-    throw InvalidInput(path + ": unknown extension (expected a mesh .off .obj .ply .stl or a "
-                              "medial surface .ma .xyzr)");
+    throw InvalidInput(path +
+                       ": unknown extension (expected a mesh .off .obj .ply .stl or a "
+                       "medial surface .ma .xyzr)");
   return object;
 }
 
@@ -247,10 +258,14 @@ Eigen::Vector3d radius_colour(double t) {
   const int sextant = std::min(static_cast<int>(h), 3);
   const double f = h - sextant;
   switch (sextant) {
-    case 0: return {1.0, f, 0.0};        // red -> yellow
-    case 1: return {1.0 - f, 1.0, 0.0};  // yellow -> green
-    case 2: return {0.0, 1.0, f};        // green -> cyan
-    default: return {0.0, 1.0 - f, 1.0}; // cyan -> blue
+    case 0:
+      return {1.0, f, 0.0};  // red -> yellow
+    case 1:
+      return {1.0 - f, 1.0, 0.0};  // yellow -> green
+    case 2:
+      return {0.0, 1.0, f};  // green -> cyan
+    default:
+      return {0.0, 1.0 - f, 1.0};  // cyan -> blue
   }
 }
 
@@ -298,7 +313,8 @@ std::string povray_scene(const std::vector<SceneObject>& objects, const View& vi
     if (const auto* soup = std::get_if<PolygonSoup>(&object.geometry))
       write_mesh(out, *soup, object.name, meshes++, opt);
     else
-      write_medial_surface(out, std::get<MedialSurface>(object.geometry), object.name, surfaces++, opt);
+      write_medial_surface(out, std::get<MedialSurface>(object.geometry), object.name, surfaces++,
+                           opt);
   }
   return out.take();
 }

@@ -90,8 +90,8 @@ std::vector<std::string> split_arguments(const std::string& args) {
 
 /// Runs `program args` in `folder` with stdin from /dev/null and stdout+stderr into `log`.
 /// @return the wait status
-int run_in(const std::string& program, const std::vector<std::string>& args,
-           const fs::path& folder, const std::string& log) {
+int run_in(const std::string& program, const std::vector<std::string>& args, const fs::path& folder,
+           const std::string& log) {
   std::vector<std::string> argv_text{program};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -99,7 +99,8 @@ int run_in(const std::string& program, const std::vector<std::string>& args,
   argv.push_back(nullptr);
 
   const pid_t pid = ::fork();
-  if (pid < 0) throw IoError(std::string("cannot start POV-Ray: fork failed: ") + std::strerror(errno));
+  if (pid < 0)
+    throw IoError(std::string("cannot start POV-Ray: fork failed: ") + std::strerror(errno));
   if (pid == 0) {  // child: only async-signal-safe calls until exec
     const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int in = ::open("/dev/null", O_RDONLY);
@@ -114,7 +115,8 @@ int run_in(const std::string& program, const std::vector<std::string>& args,
   }
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw IoError(std::string("waiting for POV-Ray failed: ") + std::strerror(errno));
+    if (errno != EINTR)
+      throw IoError(std::string("waiting for POV-Ray failed: ") + std::strerror(errno));
   }
   return status;
 }
@@ -208,8 +210,9 @@ void render_png(const std::string& scene, const std::string& output, int width, 
     out << scene;
     if (!out.flush()) throw IoError(work.file(kSceneFile) + ": write failed");
   }
-  const int status = run_in(program, split_arguments(povray_arguments(kSceneFile, kImageFile, width, height, opt)),
-                            work.path(), work.file(kLogFile));
+  const int status =
+      run_in(program, split_arguments(povray_arguments(kSceneFile, kImageFile, width, height, opt)),
+             work.path(), work.file(kLogFile));
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string how = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
                                               : "signal " + std::to_string(WTERMSIG(status));

@@ -15,7 +15,8 @@ constexpr double kPi = 3.14159265358979323846;
 Eigen::Vector3d newell_vector(const PolygonSoup& soup, const std::vector<int>& face) {
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
   const std::size_t k = face.size();
-  for (std::size_t i = 0; i < k; ++i) n += soup.points[face[i]].cross(soup.points[face[(i + 1) % k]]);
+  for (std::size_t i = 0; i < k; ++i)
+    n += soup.points[face[i]].cross(soup.points[face[(i + 1) % k]]);
   return n;
 }
 
@@ -71,7 +72,8 @@ Eigen::Vector3d face_normal(const PolygonSoup& soup, int face) {
   // rounding-noise direction otherwise).
   double longest = 0.0;
   for (std::size_t i = 0; i < f.size(); ++i)
-    longest = std::max(longest, (soup.points[f[(i + 1) % f.size()]] - soup.points[f[i]]).squaredNorm());
+    longest =
+        std::max(longest, (soup.points[f[(i + 1) % f.size()]] - soup.points[f[i]]).squaredNorm());
   if (!(n.norm() > 1e-12 * longest)) return Eigen::Vector3d::Zero();
   return n.normalized();
 }

@@ -18,8 +18,8 @@ constexpr double kPi = 3.14159265358979323846;
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
 /// Right and up of a camera looking along `forward` (unit) with `sky`: right = forward x sky.
-void camera_frame(const Eigen::Vector3d& forward, const Eigen::Vector3d& sky, Eigen::Vector3d& right,
-                  Eigen::Vector3d& up) {
+void camera_frame(const Eigen::Vector3d& forward, const Eigen::Vector3d& sky,
+                  Eigen::Vector3d& right, Eigen::Vector3d& up) {
   right = forward.cross(sky).normalized();
   up = right.cross(forward);
 }
@@ -31,8 +31,7 @@ bool parallel(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 Eigen::Vector3d vector_field(const nlohmann::json& j, const char* key, const std::string& name) {
   if (!j.contains(key)) throw InvalidInput(name + ": missing \"" + key + "\"");
   const auto& v = j.at(key);
-  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
-      !v[2].is_number())
+  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
     throw InvalidInput(name + ": \"" + key + "\" must be an array of 3 numbers");
   return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
 }
@@ -81,7 +80,8 @@ View frame_view(const std::vector<Eigen::Vector3d>& centres, const std::vector<d
   for (std::size_t i = 0; i < centres.size(); ++i) {
     const double r = radii.empty() ? 0.0 : radii[i];
     if (!centres[i].allFinite() || !std::isfinite(r) || !(r >= 0))
-      throw InvalidInput("frame_view: ball " + std::to_string(i) + " is not finite or has a negative radius");
+      throw InvalidInput("frame_view: ball " + std::to_string(i) +
+                         " is not finite or has a negative radius");
     box.extend(centres[i] - Eigen::Vector3d::Constant(r));
     box.extend(centres[i] + Eigen::Vector3d::Constant(r));
   }
@@ -179,7 +179,9 @@ View read_view(const std::string& path) {
 void write_view(const View& view, const std::string& path) {
   validate(view, path);
   nlohmann::ordered_json j;
-  auto array = [](const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+  auto array = [](const Eigen::Vector3d& v) {
+    return nlohmann::json::array({v.x(), v.y(), v.z()});
+  };
   j["location"] = array(view.location);
   j["look_at"] = array(view.look_at);
   j["sky"] = array(view.sky);

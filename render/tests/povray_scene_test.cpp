@@ -37,11 +37,11 @@ std::string block(const std::string& text, const std::string& open) {
 }
 
 TEST(RadiusColour, HotForSmallColdForLarge) {
-  EXPECT_EQ(mg::render::radius_colour(0.0), Eigen::Vector3d(1, 0, 0));     // red
-  EXPECT_EQ(mg::render::radius_colour(0.25), Eigen::Vector3d(1, 1, 0));    // yellow
-  EXPECT_EQ(mg::render::radius_colour(0.5), Eigen::Vector3d(0, 1, 0));     // green
-  EXPECT_EQ(mg::render::radius_colour(1.0), Eigen::Vector3d(0, 0, 1));     // blue
-  EXPECT_EQ(mg::render::radius_colour(-3.0), Eigen::Vector3d(1, 0, 0));    // clamped
+  EXPECT_EQ(mg::render::radius_colour(0.0), Eigen::Vector3d(1, 0, 0));   // red
+  EXPECT_EQ(mg::render::radius_colour(0.25), Eigen::Vector3d(1, 1, 0));  // yellow
+  EXPECT_EQ(mg::render::radius_colour(0.5), Eigen::Vector3d(0, 1, 0));   // green
+  EXPECT_EQ(mg::render::radius_colour(1.0), Eigen::Vector3d(0, 0, 1));   // blue
+  EXPECT_EQ(mg::render::radius_colour(-3.0), Eigen::Vector3d(1, 0, 0));  // clamped
   // HSV: full saturation and value, hue = 240 degrees * t.
   for (int i = 0; i <= 100; ++i) {
     const double t = i / 100.0;
@@ -49,8 +49,9 @@ TEST(RadiusColour, HotForSmallColdForLarge) {
     const double hi = c.maxCoeff(), lo = c.minCoeff();
     EXPECT_EQ(hi, 1.0);
     EXPECT_EQ(lo, 0.0);
-    double hue = c.x() == hi ? 60 * (c.y() - c.z()) : c.y() == hi ? 60 * (c.z() - c.x() + 2)
-                                                                   : 60 * (c.x() - c.y() + 4);
+    double hue = c.x() == hi   ? 60 * (c.y() - c.z())
+                 : c.y() == hi ? 60 * (c.z() - c.x() + 2)
+                               : 60 * (c.x() - c.y() + 4);
     if (hue < 0) hue += 360;
     EXPECT_NEAR(hue, 240 * t, 1e-9) << t;
   }
@@ -62,9 +63,12 @@ TEST(PovrayScene, MeshBecomesSmoothMesh2) {
   const auto view = mg::render::frame_view(mg::render::bounding_box(sphere), 160, 120);
   const std::string scene = mg::render::povray_scene({sphere}, view);
   EXPECT_EQ(count(scene, "mesh2 {"), 1u);
-  EXPECT_NE(scene.find("vertex_vectors { " + std::to_string(soup.points.size()) + ","), std::string::npos);
-  EXPECT_NE(scene.find("normal_vectors { " + std::to_string(soup.points.size()) + ","), std::string::npos);
-  EXPECT_NE(scene.find("face_indices { " + std::to_string(soup.faces.size()) + ","), std::string::npos);
+  EXPECT_NE(scene.find("vertex_vectors { " + std::to_string(soup.points.size()) + ","),
+            std::string::npos);
+  EXPECT_NE(scene.find("normal_vectors { " + std::to_string(soup.points.size()) + ","),
+            std::string::npos);
+  EXPECT_NE(scene.find("face_indices { " + std::to_string(soup.faces.size()) + ","),
+            std::string::npos);
   EXPECT_EQ(scene.find("normal_indices"), std::string::npos);  // one normal per vertex
   EXPECT_NE(scene.find("#version 3.7;"), std::string::npos);
   EXPECT_NE(scene.find("background { rgb <1, 1, 1> }"), std::string::npos);
@@ -74,16 +78,26 @@ TEST(PovrayScene, MeshBecomesSmoothMesh2) {
 
   mg::render::SceneOptions flat;
   flat.flat_shading = true;
-  EXPECT_EQ(mg::render::povray_scene({sphere}, view, flat).find("normal_vectors"), std::string::npos);
+  EXPECT_EQ(mg::render::povray_scene({sphere}, view, flat).find("normal_vectors"),
+            std::string::npos);
   mg::render::SceneOptions creased;
   creased.normals.crease_angle = 5;  // sharper than the sphere's facets: every corner differs
-  EXPECT_NE(mg::render::povray_scene({sphere}, view, creased).find("normal_indices"), std::string::npos);
+  EXPECT_NE(mg::render::povray_scene({sphere}, view, creased).find("normal_indices"),
+            std::string::npos);
 }
 
 TEST(PovrayScene, PolygonsAreFanTriangulated) {
   const SceneObject box{"box", mg::make_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3))};
   const auto view = mg::render::frame_view(mg::render::bounding_box(box), 100, 100);
-  EXPECT_NE(mg::render::povray_scene({box}, view).find("face_indices { 12,"), std::string::npos);
+  const std::string scene = mg::render::povray_scene({box}, view);
+  EXPECT_NE(scene.find("face_indices { 12,"), std::string::npos);
+  // By default the box's 90-degree edges are creases: corners take their face's normal.
+  EXPECT_NE(scene.find("normal_vectors { 32,"), std::string::npos);
+  EXPECT_NE(scene.find("normal_indices { 12,"), std::string::npos);
+  mg::render::SceneOptions smooth;
+  smooth.normals.crease_angle = 180;
+  EXPECT_EQ(mg::render::povray_scene({box}, view, smooth).find("normal_indices"),
+            std::string::npos);
 }
 
 TEST(PovrayScene, AtomsAreSpheresColouredByRadius) {
@@ -94,8 +108,10 @@ TEST(PovrayScene, AtomsAreSpheresColouredByRadius) {
   // The small atom uses the red texture (level 0), the large one the blue one (last level).
   EXPECT_NE(scene.find("sphere { <-1, 0, 0>, 0.25 texture { mg_atoms0_0 } }"), std::string::npos);
   EXPECT_NE(scene.find("sphere { <1, 0, 0>, 0.75 texture { mg_atoms0_255 } }"), std::string::npos);
-  EXPECT_NE(scene.find("#declare mg_atoms0_0 = texture { pigment { rgb <1, 0, 0> }"), std::string::npos);
-  EXPECT_NE(scene.find("#declare mg_atoms0_255 = texture { pigment { rgb <0, 0, 1> }"), std::string::npos);
+  EXPECT_NE(scene.find("#declare mg_atoms0_0 = texture { pigment { rgb <1, 0, 0> }"),
+            std::string::npos);
+  EXPECT_NE(scene.find("#declare mg_atoms0_255 = texture { pigment { rgb <0, 0, 1> }"),
+            std::string::npos);
   EXPECT_EQ(count(scene, "#declare mg_atoms0_"), 2u);  // only used levels are declared
 }
 
@@ -130,7 +146,8 @@ TEST(FrameObject, MeshVerticesFillTheImageUpToTheMargin) {
     mg::render::frame_object(one_point, 160, 120);
     ADD_FAILURE() << "a point was framed";
   } catch (const mg::InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("dot: frame_view: the object has zero size"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("dot: frame_view: the object has zero size"),
+              std::string::npos);
   }
 }
 
@@ -165,7 +182,8 @@ TEST(ReadSceneObject, ByExtension) {
   ASSERT_TRUE(std::holds_alternative<mg::MedialSurface>(s.geometry));
   EXPECT_EQ(std::get<mg::MedialSurface>(s.geometry).atoms.size(), 2u);
   const std::string xyzr = dir.write("s.xyzr", "0 0 0 1\n");
-  EXPECT_TRUE(std::holds_alternative<mg::MedialSurface>(mg::render::read_scene_object(xyzr).geometry));
+  EXPECT_TRUE(
+      std::holds_alternative<mg::MedialSurface>(mg::render::read_scene_object(xyzr).geometry));
   const std::string off = dir.write("t.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_TRUE(std::holds_alternative<mg::PolygonSoup>(mg::render::read_scene_object(off).geometry));
 

@@ -67,7 +67,8 @@ TEST(RenderPng, MissingExecutableIsAnIoErrorAndWritesNothing) {
     mg::render::render_png("#version 3.7;", dir.file("out.png"), 16, 16, opt);
     ADD_FAILURE() << "no error";
   } catch (const mg::IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("'mg-no-such-povray' not found on PATH"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("'mg-no-such-povray' not found on PATH"),
+              std::string::npos)
         << e.what();
   }
   opt.executable = dir.file("nothing-here");

@@ -94,7 +94,7 @@ TEST(ShadingNormals, NonManifoldAndDegenerateSoupsGetUnitNormals) {
   // normals cancel), a collinear triangle and an unused vertex.
   mg::PolygonSoup soup;
   soup.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1},
-                 {5, 0, 0}, {6, 0, 0}, {5, 1, 0}, {7, 0, 0}, {9, 9, 9}};
+                 {5, 0, 0}, {6, 0, 0}, {5, 1, 0}, {7, 0, 0},  {9, 9, 9}};
   soup.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}, {5, 6, 7}, {5, 7, 6}, {5, 6, 8}};
   const auto n = shading_normals(soup);
   for (const auto& v : n.normals) EXPECT_NEAR(v.norm(), 1.0, 1e-12);

@@ -20,7 +20,8 @@ using mg::render::View;
 double fill_fraction(const View& view, const Eigen::AlignedBox3d& box) {
   double fill = 0;
   for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d p = mg::render::project(view, box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
+    const Eigen::Vector3d p =
+        mg::render::project(view, box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
     EXPECT_GT(p.z(), 0) << "corner " << i << " behind the camera";
     fill = std::max({fill, std::abs(p.x() - view.width / 2.0) / (view.width / 2.0),
                      std::abs(p.y() - view.height / 2.0) / (view.height / 2.0)});
@@ -36,7 +37,8 @@ TEST(FrameView, BoxFillsTheImageUpToTheMargin) {
     EXPECT_NEAR(fill_fraction(view, box), 1.0 - opt.margin, 1e-9) << w << "x" << h;
     EXPECT_LT((view.look_at - box.center()).norm(), 1e-12);
     // The eye lies on the documented direction from the centre.
-    EXPECT_GT((view.location - view.look_at).normalized().dot(opt.direction.normalized()), 1 - 1e-12);
+    EXPECT_GT((view.location - view.look_at).normalized().dot(opt.direction.normalized()),
+              1 - 1e-12);
     EXPECT_EQ(view.width, w);
     EXPECT_EQ(view.height, h);
   }
@@ -74,8 +76,9 @@ TEST(FrameView, ImageAxesAreRightHanded) {
 TEST(FrameView, Preconditions) {
   const Eigen::AlignedBox3d box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
   EXPECT_THROW(frame_view(Eigen::AlignedBox3d(), 10, 10), mg::InvalidInput);
-  EXPECT_THROW(frame_view(Eigen::AlignedBox3d(Eigen::Vector3d::Ones(), Eigen::Vector3d::Ones()), 10, 10),
-               mg::InvalidInput);
+  EXPECT_THROW(
+      frame_view(Eigen::AlignedBox3d(Eigen::Vector3d::Ones(), Eigen::Vector3d::Ones()), 10, 10),
+      mg::InvalidInput);
   EXPECT_THROW(frame_view(box, 0, 10), mg::InvalidInput);
   FramingOptions opt;
   opt.direction = Eigen::Vector3d(0, 2, 0);  // parallel to sky
@@ -90,7 +93,8 @@ TEST(FrameView, Preconditions) {
 
 TEST(ViewFile, RoundTripIsExact) {
   mg_test::TempDir dir("render_view");
-  const Eigen::AlignedBox3d box(Eigen::Vector3d(-1.0 / 3, 0.1, 1e-7), Eigen::Vector3d(2.0 / 7, 0.7, 1.3));
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-1.0 / 3, 0.1, 1e-7),
+                                Eigen::Vector3d(2.0 / 7, 0.7, 1.3));
   const View view = frame_view(box, 640, 480);
   mg::render::write_view(view, dir.file("v.json"));
   const View back = mg::render::read_view(dir.file("v.json"));

@@ -35,8 +35,7 @@ Eigen::AlignedBox3d bounding_box(const SceneObject& object);
 /// frame_view() of the object's vertices (mesh) or balls (atoms): the camera looks at the centre
 /// of its bounding box from opt.direction, as close as the whole object allows.
 /// @throws InvalidInput as frame_view(), prefixed by the object's name
-View frame_object(const SceneObject& object, int width, int height,
-                  const FramingOptions& opt = {});
+View frame_object(const SceneObject& object, int width, int height, const FramingOptions& opt = {});
 
 /// The colour of an atom, from its radius normalised to t in [0, 1] over the surface's radii:
 /// the hue goes from red (t = 0, smallest) through yellow, green and cyan to blue (t = 1,
@@ -46,7 +45,9 @@ Eigen::Vector3d radius_colour(double t);
 /// Options of povray_scene().
 struct SceneOptions {
   bool flat_shading = false;  ///< meshes without normals: every triangle flat
-  NormalOptions normals;      ///< weighting and crease angle of smooth shading
+  /// Weighting and crease angle of smooth shading: angle-weighted, edges sharper than 60
+  /// degrees stay sharp (a cube looks like a cube; smooth models are not affected).
+  NormalOptions normals{NormalWeighting::angle, /*crease_angle=*/60.0};
   /// Fraction of light passing through meshes, [0, 1): 0 opaque; e.g. 0.6 shows the atoms of a
   /// medial surface rendered inside the original object.
   double mesh_transmit = 0.0;
@@ -55,10 +56,11 @@ struct SceneOptions {
 
 /// The complete text of a POV-Ray 3.7 scene: camera from `view` (image aspect from its width
 /// and height), a white background, a key light with shadows, a fill and a rim light placed
-/// relative to the camera, then every object. Meshes become `mesh2` (polygons fan-triangulated,
-/// per-corner normals from shading_normals() unless flat), coloured from a fixed palette by
-/// their rank among the meshes; medial surfaces a union of spheres coloured by radius_colour().
-/// The text depends only on the arguments (numbers printed in the "C" locale).
+/// relative to the camera, then every object (smooth meshes cast no shadow: smooth triangles
+/// would shadow their neighbours along a jagged terminator). Meshes become `mesh2` (polygons
+/// fan-triangulated, per-corner normals from shading_normals() unless flat), coloured from a fixed
+/// palette by their rank among the meshes; medial surfaces a union of spheres coloured by
+/// radius_colour(). The text depends only on the arguments (numbers printed in the "C" locale).
 /// @pre validate(view) holds; every face index in range; atoms valid (validate())
 /// @throws InvalidInput naming the object or option at fault
 std::string povray_scene(const std::vector<SceneObject>& objects, const View& view,

@@ -14,9 +14,9 @@ namespace mg::render {
 /// A perspective camera and the image size it was framed for. Model units, right-handed
 /// coordinates; the image's right is (look_at - location) x sky.
 struct View {
-  Eigen::Vector3d location = Eigen::Vector3d::Zero();  ///< eye, model units
+  Eigen::Vector3d location = Eigen::Vector3d::Zero();   ///< eye, model units
   Eigen::Vector3d look_at = -Eigen::Vector3d::UnitZ();  ///< point seen at the image centre
-  Eigen::Vector3d sky = Eigen::Vector3d::UnitY();        ///< up in the image (unit vector)
+  Eigen::Vector3d sky = Eigen::Vector3d::UnitY();       ///< up in the image (unit vector)
   double angle = 30.0;  ///< horizontal field of view, degrees in (0, 180)
   int width = 800;      ///< pixels
   int height = 600;     ///< pixels
