@@ -12,7 +12,7 @@ struct PovrayOptions {
   /// Adaptive anti-aliasing (POV-Ray method 2, jitter off): colour threshold in [0, 3],
   /// 0 switches anti-aliasing off.
   double antialias_threshold = 0.1;
-  int antialias_depth = 3;  ///< subdivision depth of method 2, 1..9 (up to 4^(d-1)+... rays)
+  int antialias_depth = 3;  ///< subdivision depth of method 2 (POV-Ray +R), 1..9
   int threads = 0;          ///< POV-Ray render threads, 0 = POV-Ray's default (every core)
 };
 
