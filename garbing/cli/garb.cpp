@@ -31,14 +31,7 @@ double seconds_since(Clock::time_point t0) {
 }
 
 void write_json(const nlohmann::ordered_json& j, const std::string& path) {
-  mg::AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path());
-    if (!out) throw mg::IoError(path + ": cannot open for writing");
-    out << std::setw(2) << j << '\n';
-    if (!out) throw mg::IoError(path + ": write failed");
-  }
-  file.commit();
+  mg::write_file_atomically(path, [&](std::ostream& out) { out << std::setw(2) << j << '\n'; });
 }
 
 int garb_main(int argc, char** argv) {

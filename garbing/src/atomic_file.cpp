@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 
 namespace fs = std::filesystem;
@@ -38,6 +39,18 @@ void AtomicFile::commit() {
   fs::rename(temp_, target_, ec);
   if (ec) throw IoError(target_ + ": cannot move the finished file into place: " + ec.message());
   committed_ = true;
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  AtomicFile file(path);
+  {
+    std::ofstream out(file.temp_path(), std::ios::binary);
+    if (!out) throw IoError(path + ": cannot open for writing");
+    write(out);
+    out.flush();
+    if (!out) throw IoError(path + ": write failed");
+  }
+  file.commit();
 }
 
 void check_output_path(const std::string& output, const std::vector<std::string>& inputs) {

@@ -317,11 +317,7 @@ class Extractor {
       for (int a = 0; a < 3; ++a) centre[a] = 0.5 * static_cast<double>(c[0][a] + c[2][a]) * unit;
       out_.face_centres.push_back(tree_.to_world(centre));
     }
-    try {
-      out_.mesh = mesh_from_soup(soup, "M1");
-    } catch (const InvalidInput& e) {
-      defect(e.what());
-    }
+    out_.mesh = mesh_from_manifold_soup(soup, "M1");
     return std::move(out_);
   }
 

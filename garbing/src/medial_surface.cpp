@@ -213,15 +213,7 @@ void format_medial_surface(std::ostream& out, const MedialSurface& s) {
 }
 
 void write_medial_surface(const MedialSurface& s, const std::string& path) {
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path());
-    if (!out) throw IoError(path + ": cannot open for writing");
-    format_medial_surface(out, s);
-    out.flush();
-    if (!out) throw IoError(path + ": write failed");
-  }
-  file.commit();
+  write_file_atomically(path, [&](std::ostream& out) { format_medial_surface(out, s); });
 }
 
 }  // namespace mg

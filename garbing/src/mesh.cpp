@@ -41,9 +41,14 @@ Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& name) {
   }
   const MeshTopology topo = mesh_topology(soup);
   if (!topo.oriented) throw InvalidInput(name + ": " + topo.first_problem);
+  return mesh_from_manifold_soup(soup, name);
+}
 
+Mesh mesh_from_manifold_soup(const PolygonSoup& soup, const std::string& name) {
   Mesh mesh;
-  mesh.reserve(soup.points.size(), topo.edges, soup.faces.size());
+  std::size_t corners = 0;
+  for (const auto& f : soup.faces) corners += f.size();
+  mesh.reserve(soup.points.size(), corners / 2, soup.faces.size());
   std::vector<Mesh::VertexHandle> handles;
   handles.reserve(soup.points.size());
   for (const auto& p : soup.points) handles.push_back(mesh.add_vertex(Mesh::Point(p.x(), p.y(), p.z())));

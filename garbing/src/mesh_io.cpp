@@ -251,10 +251,7 @@ void write_polygon_soup(const PolygonSoup& soup, const std::string& path) {
   if (!has_mesh_extension(path))
     throw InvalidInput(path + ": unknown mesh extension (expected .off, .obj, .ply or .stl)");
   const std::string ext = extension_of(path);
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary);
-    if (!out) throw IoError(path + ": cannot open for writing");
+  write_file_atomically(path, [&](std::ostream& out) {
     out.precision(17);
     if (ext == ".off") {
       write_off(out, soup);
@@ -265,10 +262,7 @@ void write_polygon_soup(const PolygonSoup& soup, const std::string& path) {
     } else {
       write_stl(out, soup);
     }
-    out.flush();
-    if (!out) throw IoError(path + ": write failed");
-  }
-  file.commit();
+  });
 }
 
 void write_mesh(const Mesh& mesh, const std::string& path) {

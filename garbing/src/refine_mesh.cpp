@@ -387,11 +387,7 @@ class Refiner {
     PolygonSoup soup = soup_of(triangles);
     for (auto& p : soup.points) p = tree_.to_world(p);
     RefinedMesh out;
-    try {
-      out.mesh = mesh_from_soup(soup, "M2");
-    } catch (const InvalidInput& e) {
-      throw TopologyError(std::string("M2 construction: ") + e.what());
-    }
+    out.mesh = mesh_from_manifold_soup(soup, "M2");
     out.stats = stats_;
     return out;
   }

@@ -8,6 +8,8 @@
 #include <numeric>
 #include <queue>
 
+#include <tbb/parallel_for.h>
+
 namespace mg {
 
 using Vec3 = Eigen::Vector3d;
@@ -468,6 +470,37 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
       out = q;
     }
   }
+  // Circles where two of the spheres around p meet.
+  std::vector<int> balls;
+  for (int i : around)
+    if (is_sphere(i)) balls.push_back(i);
+  for (std::size_t x = 0; x < balls.size(); ++x)
+    for (std::size_t y = x + 1; y < balls.size(); ++y) {
+      const MedialAtom& a = spheres_[balls[x]];
+      const MedialAtom& b = spheres_[balls[y]];
+      const Vec3 axis = b.centre - a.centre;
+      const double L = axis.norm();
+      if (!(L < a.radius + b.radius) || !(L > std::abs(a.radius - b.radius))) continue;
+      const Vec3 n = axis / L;
+      const double along = (L * L + a.radius * a.radius - b.radius * b.radius) / (2 * L);
+      const double radius = std::sqrt(std::max(0.0, a.radius * a.radius - along * along));
+      const Vec3 centre = a.centre + along * n;
+      Vec3 radial = (p - centre) - (p - centre).dot(n) * n;
+      if (radial.squaredNorm() == 0) radial = n.unitOrthogonal();
+      const Vec3 q = centre + radius * radial.normalized();
+      const double e2 = (q - p).squaredNorm();
+      if (e2 >= best) continue;
+      const double eps = 1e-12 * (1 + std::sqrt(e2));
+      bool exposed = true;
+      bvh_->visit([&](const Box& bb) { return exposed && bb.squared_distance(q) == 0; },
+                  [&](int j) {
+                    exposed = exposed && (j == balls[x] || j == balls[y] || !primitive_contains(j, q, eps));
+                  });
+      if (exposed) {
+        best = e2;
+        out = q;
+      }
+    }
   const double reach = std::isfinite(best) ? std::sqrt(best) : kInf;
   for (const Vec3& d : probe_directions()) {
     double t;
@@ -477,6 +510,73 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
       out = p + t * d;
     }
   }
+  return out;
+}
+
+namespace {
+
+/// splitmix64: a counter-based stream, so sample k depends only on (seed, k).
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+double uniform(std::uint64_t seed, std::uint64_t k, int j) {
+  return static_cast<double>(mix(seed * 0x632be59bd9b4e019ULL + 4 * k + static_cast<std::uint64_t>(j)) >> 11) *
+         0x1.0p-53;
+}
+
+}  // namespace
+
+std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t seed) const {
+  const std::size_t n = spheres_.size() + cones_.size();
+  std::vector<double> cumulative(n);
+  double total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (is_sphere(static_cast<int>(i))) {
+      total += 4 * M_PI * spheres_[i].radius * spheres_[i].radius;
+    } else {
+      const Cone& k = cone(static_cast<int>(i));
+      const double slant = std::hypot(k.t_hi - k.t_lo, k.rho_hi - k.rho_lo);
+      total += M_PI * (k.rho_lo + k.rho_hi) * slant;
+    }
+    cumulative[i] = total;
+  }
+  std::vector<Vec3> points(count);
+  std::vector<char> keep(count, 0);
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) {
+    const double pick = uniform(seed, k, 0) * total;
+    const int i = static_cast<int>(std::min<std::size_t>(
+        std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(), n - 1));
+    const double u = uniform(seed, k, 1), v = uniform(seed, k, 2);
+    Vec3 q;
+    if (is_sphere(i)) {
+      const double z = 2 * u - 1, phi = 2 * M_PI * v, s = std::sqrt(std::max(0.0, 1 - z * z));
+      q = spheres_[i].centre + spheres_[i].radius * Vec3(s * std::cos(phi), s * std::sin(phi), z);
+    } else {
+      // Lateral area element ~ rho(s): invert the cumulative of a linear density on [0, 1].
+      const Cone& c = cone(i);
+      const double a = c.rho_lo, b = c.rho_hi;
+      const double s = std::abs(b - a) < 1e-15 * (a + b)
+                           ? u
+                           : (std::sqrt(a * a + u * (b * b - a * a)) - a) / (b - a);
+      const Vec3 e1 = c.u.unitOrthogonal(), e2 = c.u.cross(e1);
+      const double phi = 2 * M_PI * v;
+      q = c.c1 + (c.t_lo + s * (c.t_hi - c.t_lo)) * c.u +
+          (a + s * (b - a)) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+    }
+    const double eps = 1e-12 * (1 + q.norm());
+    bool exposed = true;
+    bvh_->visit([&](const Box& bb) { return exposed && bb.squared_distance(q) == 0; },
+                [&](int j) { exposed = exposed && (j == i || !primitive_contains(j, q, eps)); });
+    points[k] = q;
+    keep[k] = exposed;
+  });
+  std::vector<Vec3> out;
+  for (std::size_t k = 0; k < count; ++k)
+    if (keep[k]) out.push_back(points[k]);
   return out;
 }
 

@@ -15,14 +15,7 @@
 namespace {
 
 void write_text(const std::string& text, const std::string& path) {
-  mg::AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary);
-    if (!out) throw mg::IoError(path + ": cannot open for writing");
-    out << text;
-    if (!out.flush()) throw mg::IoError(path + ": write failed");
-  }
-  file.commit();
+  mg::write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
 bool ends_with_png(std::string path) {

@@ -232,14 +232,7 @@ void render_png(const std::string& scene, const std::string& output, int width, 
     throw IoError(output + ": POV-Ray wrote a " + std::to_string(w) + "x" + std::to_string(h) +
                   " image, expected " + std::to_string(width) + "x" + std::to_string(height));
 
-  AtomicFile file(output);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary);
-    if (!out) throw IoError(output + ": cannot open for writing");
-    out << clean;
-    if (!out.flush()) throw IoError(output + ": write failed");
-  }
-  file.commit();
+  write_file_atomically(output, [&](std::ostream& out) { out << clean; });
 }
 
 }  // namespace mg::render

@@ -188,14 +188,7 @@ void write_view(const View& view, const std::string& path) {
   j["angle"] = view.angle;
   j["width"] = view.width;
   j["height"] = view.height;
-  AtomicFile file(path);
-  {
-    std::ofstream out(file.temp_path());
-    if (!out) throw IoError(path + ": cannot open for writing");
-    out << std::setw(2) << j << '\n';
-    if (!out) throw IoError(path + ": write failed");
-  }
-  file.commit();
+  write_file_atomically(path, [&](std::ostream& out) { out << std::setw(2) << j << '\n'; });
 }
 
 }  // namespace mg::render

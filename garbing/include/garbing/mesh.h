@@ -36,6 +36,11 @@ PolygonSoup soup_from_mesh(const Mesh& mesh);
 /// @throws InvalidInput naming the first offending face, edge or vertex
 Mesh mesh_from_soup(const PolygonSoup& soup, const std::string& name);
 
+/// Builds a half-edge mesh from a soup the caller constructed as an oriented 2-manifold
+/// (M1, M2): no analysis beyond what adding each face checks.
+/// @throws TopologyError naming the first face the half-edge mesh refuses
+Mesh mesh_from_manifold_soup(const PolygonSoup& soup, const std::string& name);
+
 /// Length of the diagonal of the axis-aligned bounding box of `points` (0 if empty).
 double bbox_diagonal(const std::vector<Eigen::Vector3d>& points);
 

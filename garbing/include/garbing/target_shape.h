@@ -9,6 +9,7 @@
 #include "garbing/medial_surface.h"
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -98,12 +99,22 @@ class TargetShape {
   bool run_end(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max,
                double& t) const;
 
-  /// A closest point of G to p (exact when p is outside the union; when inside, the nearest of
-  /// the exposed closest points of nearby primitives and of exits along 26 directions).
+  /// A closest point of G to p. Exact when p is outside the union. Inside, the nearest of the
+  /// exposed (on no other primitive's inside) candidates: each nearby primitive's nearest
+  /// surface point, the nearest point of each circle where two nearby spheres meet, and the
+  /// exits along 26 directions. Exact for unions of spheres and wherever the nearest point of G
+  /// lies inside one primitive's patch; elsewhere (a crease with a cone) an upper bound: every
+  /// candidate lies on G.
   Eigen::Vector3d closest_point(const Eigen::Vector3d& p) const;
 
   /// Distance from p to G (unsigned), with the same exactness as closest_point().
   double distance(const Eigen::Vector3d& p) const { return (closest_point(p) - p).norm(); }
+
+  /// Points of G, uniform in area: `count` points spread over the primitives' surfaces in
+  /// proportion to their areas (sphere: 4 pi r^2, cone: its lateral area), each uniform on its
+  /// primitive, of which those inside no other primitive are kept (so fewer than `count` come
+  /// back). Sample k depends only on (seed, k): reproducible at any thread count.
+  std::vector<Eigen::Vector3d> sample_boundary(std::size_t count, std::uint64_t seed) const;
 
   /// Primitives whose solid meets the axis-aligned box [lo, hi] (exact for spheres; for cones,
   /// the convex hull of the two balls is tested), appended in increasing id order.
