@@ -1,10 +1,11 @@
 // Benchmark of `evaluate distance`: two ~100k-face meshes at the default sample count
 // (max(1e6, 10 (V_a + V_b)) per side). Target: under 2 s on 2 cores.
-//   build/bin/evaluate_bench --benchmark_filter=Distance
+//   build/bin/evaluate_bench --benchmark_filter=Distance --benchmark_repetitions=3
 #include "evaluate/mesh_distance.h"
 #include "garbing/shapes.h"
 
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 namespace {
 
@@ -21,8 +22,10 @@ const mg::PolygonSoup& bumpy_torus() {
 }
 
 /// The whole `distance` computation without file input/output: sampling, two AABB trees,
-/// both directions.
+/// both directions. Argument: worker threads (1, then 2: the ratio in one run).
 void BM_DistanceDefaultSamples(benchmark::State& state) {
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(state.range(0)));
   ev::MeshDistance r;
   for (auto _ : state) {
     r = ev::mesh_distance(torus(), bumpy_torus());
@@ -32,7 +35,7 @@ void BM_DistanceDefaultSamples(benchmark::State& state) {
   state.counters["samples_per_side"] = static_cast<double>(r.samples);
   state.counters["hausdorff_pct"] = ev::percent_of_diagonal(r.distance.hausdorff, r.diagonal);
 }
-BENCHMARK(BM_DistanceDefaultSamples)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DistanceDefaultSamples)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// The parts: building one AABB tree, and sampling one side.
 void BM_BuildTriangleIndex(benchmark::State& state) {

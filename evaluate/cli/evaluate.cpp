@@ -23,11 +23,13 @@
 #include <tbb/global_control.h>
 
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -53,15 +55,8 @@ struct Report {
     if (!stats.empty()) mg::check_output_path(stats, inputs);
   }
   void emit(const Json& j, const std::string& text) const {
-    if (!stats.empty()) {
-      mg::AtomicFile file(stats);
-      {
-        std::ofstream out(file.temp_path());
-        out << std::setw(2) << j << '\n';
-        if (!out) throw mg::IoError(stats + ": write failed");
-      }
-      file.commit();
-    }
+    if (!stats.empty())
+      mg::write_file_atomically(stats, [&j](std::ostream& out) { out << std::setw(2) << j << '\n'; });
     if (json)
       std::cout << std::setw(2) << j << '\n';
     else
@@ -217,11 +212,15 @@ int evaluate_main(int argc, char** argv) {
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                   static_cast<std::size_t>(threads));
 
+  // distance and normals: MESH and REFERENCE, timed from reading to the result.
+  const auto t0 = Clock::now();
+  auto read_pair = [&](const Report& report) {
+    report.check({mesh_path, ref_path});
+    return std::make_pair(mg::read_polygon_soup(mesh_path), mg::read_polygon_soup(ref_path));
+  };
+
   if (*distance) {
-    distance_report.check({mesh_path, ref_path});
-    const auto t0 = Clock::now();
-    const mg::PolygonSoup mesh = mg::read_polygon_soup(mesh_path);
-    const mg::PolygonSoup ref = mg::read_polygon_soup(ref_path);
+    const auto [mesh, ref] = read_pair(distance_report);
     ev::MeshDistanceOptions opt;
     opt.samples = samples;
     opt.seed = seed;
@@ -261,10 +260,7 @@ int evaluate_main(int argc, char** argv) {
   }
 
   if (*normals) {
-    normals_report.check({mesh_path, ref_path});
-    const auto t0 = Clock::now();
-    const mg::PolygonSoup mesh = mg::read_polygon_soup(mesh_path);
-    const mg::PolygonSoup ref = mg::read_polygon_soup(ref_path);
+    const auto [mesh, ref] = read_pair(normals_report);
     ev::NormalOptions opt;
     opt.samples = samples;
     opt.seed = seed;
