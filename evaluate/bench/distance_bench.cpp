@@ -35,7 +35,12 @@ void BM_DistanceDefaultSamples(benchmark::State& state) {
   state.counters["samples_per_side"] = static_cast<double>(r.samples);
   state.counters["hausdorff_pct"] = ev::percent_of_diagonal(r.distance.hausdorff, r.diagonal);
 }
-BENCHMARK(BM_DistanceDefaultSamples)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DistanceDefaultSamples)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 /// The parts: building one AABB tree, and sampling one side.
 void BM_BuildTriangleIndex(benchmark::State& state) {

@@ -19,10 +19,11 @@
 #include "garbing/medial_surface.h"
 #include "garbing/mesh_io.h"
 
-#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -56,7 +57,8 @@ struct Report {
   }
   void emit(const Json& j, const std::string& text) const {
     if (!stats.empty())
-      mg::write_file_atomically(stats, [&j](std::ostream& out) { out << std::setw(2) << j << '\n'; });
+      mg::write_file_atomically(stats,
+                                [&j](std::ostream& out) { out << std::setw(2) << j << '\n'; });
     if (json)
       std::cout << std::setw(2) << j << '\n';
     else
@@ -101,8 +103,7 @@ std::string timing_text(const ev::StageTiming& t) {
 void check_mesh_output(const std::string& output, const std::vector<std::string>& inputs) {
   mg::check_output_path(output, inputs);
   if (!mg::has_mesh_extension(output))
-    throw mg::InvalidInput(output +
-                           ": unknown mesh extension (expected .off, .obj, .ply or .stl)");
+    throw mg::InvalidInput(output + ": unknown mesh extension (expected .off, .obj, .ply or .stl)");
 }
 
 Json mesh_size_json(const mg::PolygonSoup& soup) {
@@ -114,8 +115,9 @@ std::string mesh_size_text(const mg::PolygonSoup& soup) {
 }
 
 int evaluate_main(int argc, char** argv) {
-  CLI::App app{"Distances (Metro-style Hausdorff, RMS, mean), normal deviation, mesh checks, "
-               "and the timed baselines (CGAL skin surface, union of balls, OpenVDB)."};
+  CLI::App app{
+      "Distances (Metro-style Hausdorff, RMS, mean), normal deviation, mesh checks, "
+      "and the timed baselines (CGAL skin surface, union of balls, OpenVDB)."};
   app.option_defaults()->always_capture_default();
   app.require_subcommand(1);
   app.fallthrough();
@@ -181,7 +183,8 @@ int evaluate_main(int argc, char** argv) {
   skin->add_option("--subdivisions", subdivisions, "CGAL refinement rounds");
   skin_report.add_options(skin);
 
-  auto* onion = add_baseline("union", "CGAL union of balls (Union_of_balls_3 + mesh_union_of_balls_3)");
+  auto* onion =
+      add_baseline("union", "CGAL union of balls (Union_of_balls_3 + mesh_union_of_balls_3)");
   Report union_report;
   onion->add_option("--subdivisions", subdivisions, "CGAL refinement rounds");
   union_report.add_options(onion);
@@ -191,13 +194,15 @@ int evaluate_main(int argc, char** argv) {
   double voxel = 0;
   std::size_t match_vertices = 0;
   std::vector<std::string> match_hausdorff;
-  auto* voxel_opt = vdb->add_option("--voxel", voxel, "voxel size, model units (0 = diagonal / 400)");
+  auto* voxel_opt =
+      vdb->add_option("--voxel", voxel, "voxel size, model units (0 = diagonal / 400)");
   auto* mv_opt = vdb->add_option("--match-vertices", match_vertices,
                                  "search the voxel giving about N vertices (at most 5 probes)");
-  auto* mh_opt = vdb->add_option("--match-hausdorff", match_hausdorff,
-                                 "P REF: search the voxel giving a Hausdorff distance to REF of P % "
-                                 "of REF's diagonal (at most 5 probes)")
-                     ->expected(2);
+  auto* mh_opt =
+      vdb->add_option("--match-hausdorff", match_hausdorff,
+                      "P REF: search the voxel giving a Hausdorff distance to REF of P % "
+                      "of REF's diagonal (at most 5 probes)")
+          ->expected(2);
   vdb->add_option("--samples", samples,
                   "--match-hausdorff: samples per side (0 = default; raised to twice the larger "
                   "vertex count when below it)");
@@ -250,10 +255,10 @@ int evaluate_main(int argc, char** argv) {
          << length_text(d.a_to_b.mean, diag) << ", RMS " << length_text(d.a_to_b.rms, diag)
          << "\nreference -> mesh: max " << length_text(d.b_to_a.max, diag) << ", mean "
          << length_text(d.b_to_a.mean, diag) << ", RMS " << length_text(d.b_to_a.rms, diag)
-         << "\nHausdorff " << length_text(d.hausdorff, diag) << ", RMS "
-         << length_text(d.rms, diag) << ", mean " << length_text(d.mean, diag)
-         << "\n(% of the reference's bounding-box diagonal " << std::setprecision(6) << diag
-         << "; " << r.samples << " samples per side, " << (faces_only ? "faces" : "Metro")
+         << "\nHausdorff " << length_text(d.hausdorff, diag) << ", RMS " << length_text(d.rms, diag)
+         << ", mean " << length_text(d.mean, diag)
+         << "\n(% of the reference's bounding-box diagonal " << std::setprecision(6) << diag << "; "
+         << r.samples << " samples per side, " << (faces_only ? "faces" : "Metro")
          << " sampling, seed " << seed << ", " << std::setprecision(3) << seconds << " s)\n";
     distance_report.emit(j, text.str());
     return 0;
@@ -279,9 +284,9 @@ int evaluate_main(int argc, char** argv) {
     j["max_deg"] = r.max_deg;
     j["seconds"] = seconds;
     std::ostringstream text;
-    text << std::setprecision(4) << "normal deviation: mean " << r.mean_deg << " deg, 95th percentile "
-         << r.p95_deg << " deg, max " << r.max_deg << " deg (" << r.samples
-         << " area-uniform samples, " << (flat_reference ? "flat" : "smooth")
+    text << std::setprecision(4) << "normal deviation: mean " << r.mean_deg
+         << " deg, 95th percentile " << r.p95_deg << " deg, max " << r.max_deg << " deg ("
+         << r.samples << " area-uniform samples, " << (flat_reference ? "flat" : "smooth")
          << " reference normals)\n";
     normals_report.emit(j, text.str());
     return 0;
@@ -340,6 +345,10 @@ int evaluate_main(int argc, char** argv) {
   // Baselines: atoms in, mesh out, timed without file input/output.
   const std::vector<std::string> inputs = {atoms_path};
   check_mesh_output(output, inputs);
+  for (const Report* r : {&skin_report, &union_report, &vdb_report})
+    if (!r->stats.empty() &&
+        std::filesystem::weakly_canonical(r->stats) == std::filesystem::weakly_canonical(output))
+      throw mg::InvalidInput(r->stats + ": --stats and --output name the same file");
   Json j;
   std::ostringstream text;
   mg::PolygonSoup result;
@@ -359,8 +368,8 @@ int evaluate_main(int argc, char** argv) {
     j["subdivisions"] = subdivisions;
     j.update(mesh_size_json(result));
     j["seconds"] = timing_json(t);
-    text << (*skin ? "skin surface" : "union of balls") << ": " << mesh_size_text(result)
-         << ", " << timing_text(t) << '\n';
+    text << (*skin ? "skin surface" : "union of balls") << ": " << mesh_size_text(result) << ", "
+         << timing_text(t) << '\n';
   } else {
     std::vector<std::string> vdb_inputs = inputs;
     std::string match_ref;

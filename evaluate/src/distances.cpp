@@ -75,8 +75,8 @@ OneSidedDistance one_sided_distance(const SurfaceSamples& from, const DistanceOr
   for (std::size_t i = 0; i < n; ++i) {
     const double di = d[i];
     if (!(di >= 0) || !std::isfinite(di))
-      throw NumericalError("distance: the oracle returned " + std::to_string(di) +
-                           " for sample " + std::to_string(i));
+      throw NumericalError("distance: the oracle returned " + std::to_string(di) + " for sample " +
+                           std::to_string(i));
     if (di > r.max) {
       r.max = di;
       farthest = i;

@@ -28,8 +28,8 @@ using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 /// Detection, 5.1.5): Voronoi regions of the vertices, then of the edges, then the face.
 Point closest_on_triangle(const Point& p, const CgalTriangle& t) {
   using V = Eigen::Vector3d;
-  const V P(p.x(), p.y(), p.z()), A(t[0].x(), t[0].y(), t[0].z()),
-      B(t[1].x(), t[1].y(), t[1].z()), C(t[2].x(), t[2].y(), t[2].z());
+  const V P(p.x(), p.y(), p.z()), A(t[0].x(), t[0].y(), t[0].z()), B(t[1].x(), t[1].y(), t[1].z()),
+      C(t[2].x(), t[2].y(), t[2].z());
   auto out = [](const V& q) { return Point(q.x(), q.y(), q.z()); };
   const V ab = B - A, ac = C - A, ap = P - A;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
@@ -97,7 +97,7 @@ struct TriangleIndex::Impl {
   PolygonSoup soup;
   Triangles triangles;
   std::vector<CgalTriangle> cgal_triangles;  ///< the non-degenerate triangles
-  std::vector<std::size_t> triangle_of;      ///< cgal_triangles[i] is triangles.corners[triangle_of[i]]
+  std::vector<std::size_t> triangle_of;  ///< cgal_triangles[i] is triangles.corners[triangle_of[i]]
   Tree tree;
 };
 
@@ -197,8 +197,8 @@ MeshDistance mesh_distance(const PolygonSoup& mesh, const PolygonSoup& reference
   r.diagonal = bbox_diagonal(reference.points);
   if (!(r.diagonal > 0))
     throw InvalidInput(reference_name + ": bounding-box diagonal is 0 (all points coincide)");
-  r.distance = two_sided_distance(on_mesh, reference_index->oracle(), on_reference,
-                                  mesh_index->oracle());
+  r.distance =
+      two_sided_distance(on_mesh, reference_index->oracle(), on_reference, mesh_index->oracle());
   return r;
 }
 

@@ -78,30 +78,31 @@ NormalDeviation normal_deviation(const PolygonSoup& mesh, const PolygonSoup& ref
   const std::size_t n = samples.points.size();
   std::vector<double> angle(n, -1.0);  // -1: reference normal undefined
   const std::size_t batches = (n + kOracleBatch - 1) / kOracleBatch;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batches),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<TriangleIndex::Hit> hits(kOracleBatch);
-    for (std::size_t b = range.begin(); b != range.end(); ++b) {
-      const std::size_t first = b * kOracleBatch, m = std::min(kOracleBatch, n - first);
-      index.closest_points(samples.points.data() + first, m, hits.data());
-      for (std::size_t i = 0; i < m; ++i) {
-        const Eigen::Vector3d mesh_normal =
-            facet_normal(mesh, mesh_tris.corners[samples.triangle[first + i]]);
-        const auto& t = ref_tris.corners[hits[i].triangle];
-        Eigen::Vector3d ref_normal = facet_normal(reference, t);
-        if (opt.smooth_reference) {
-          const Eigen::Vector3d l = barycentric(hits[i].point, reference.points[t[0]],
-                                                reference.points[t[1]], reference.points[t[2]]);
-          const Eigen::Vector3d s = l[0] * ref_vertex_normals[t[0]] +
-                                    l[1] * ref_vertex_normals[t[1]] +
-                                    l[2] * ref_vertex_normals[t[2]];
-          if (s.norm() > 1e-12) ref_normal = s.normalized();
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, batches),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        std::vector<TriangleIndex::Hit> hits(kOracleBatch);
+        for (std::size_t b = range.begin(); b != range.end(); ++b) {
+          const std::size_t first = b * kOracleBatch, m = std::min(kOracleBatch, n - first);
+          index.closest_points(samples.points.data() + first, m, hits.data());
+          for (std::size_t i = 0; i < m; ++i) {
+            const Eigen::Vector3d mesh_normal =
+                facet_normal(mesh, mesh_tris.corners[samples.triangle[first + i]]);
+            const auto& t = ref_tris.corners[hits[i].triangle];
+            Eigen::Vector3d ref_normal = facet_normal(reference, t);
+            if (opt.smooth_reference) {
+              const Eigen::Vector3d l = barycentric(hits[i].point, reference.points[t[0]],
+                                                    reference.points[t[1]], reference.points[t[2]]);
+              const Eigen::Vector3d s = l[0] * ref_vertex_normals[t[0]] +
+                                        l[1] * ref_vertex_normals[t[1]] +
+                                        l[2] * ref_vertex_normals[t[2]];
+              if (s.norm() > 1e-12) ref_normal = s.normalized();
+            }
+            if (!ref_normal.isZero() && !mesh_normal.isZero())
+              angle[first + i] = angle_deg(mesh_normal, ref_normal);
+          }
         }
-        if (!ref_normal.isZero() && !mesh_normal.isZero())
-          angle[first + i] = angle_deg(mesh_normal, ref_normal);
-      }
-    }
-  });
+      });
 
   NormalDeviation r;
   std::vector<double> measured;

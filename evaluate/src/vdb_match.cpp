@@ -100,9 +100,9 @@ class VoxelSearch {
 
 VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices, int max_probes) {
   if (vertices < 1) throw InvalidInput("--match-vertices must be >= 1");
-  return VoxelSearch(atoms, static_cast<double>(vertices), /*exponent=*/-2.0,
-                     [](const VdbMesh& m) { return static_cast<double>(m.mesh.points.size()); },
-                     max_probes)
+  return VoxelSearch(
+             atoms, static_cast<double>(vertices), /*exponent=*/-2.0,
+             [](const VdbMesh& m) { return static_cast<double>(m.mesh.points.size()); }, max_probes)
       .run();
 }
 
@@ -114,17 +114,18 @@ VdbMatch vdb_match_hausdorff(const MedialSurface& atoms, double percent,
     m << "--match-hausdorff percent must be > 0, got " << percent;
     throw InvalidInput(m.str());
   }
-  return VoxelSearch(atoms, percent, /*exponent=*/1.0,
-                     [&](const VdbMesh& m) {
-                       MeshDistanceOptions opt = distance;
-                       if (opt.samples > 0 && opt.vertices_and_edges)  // Metro takes every vertex
-                         opt.samples = std::max({opt.samples, 2 * m.mesh.points.size(),
-                                                 2 * reference.points.size()});
-                       const MeshDistance d =
-                           mesh_distance(m.mesh, reference, opt, "vdb mesh", reference_name);
-                       return percent_of_diagonal(d.distance.hausdorff, d.diagonal);
-                     },
-                     max_probes)
+  return VoxelSearch(
+             atoms, percent, /*exponent=*/1.0,
+             [&](const VdbMesh& m) {
+               MeshDistanceOptions opt = distance;
+               if (opt.samples > 0 && opt.vertices_and_edges)  // Metro takes every vertex
+                 opt.samples =
+                     std::max({opt.samples, 2 * m.mesh.points.size(), 2 * reference.points.size()});
+               const MeshDistance d =
+                   mesh_distance(m.mesh, reference, opt, "vdb mesh", reference_name);
+               return percent_of_diagonal(d.distance.hausdorff, d.diagonal);
+             },
+             max_probes)
       .run();
 }
 

@@ -163,12 +163,10 @@ TEST(Baselines, VoxelSearchHitsAHausdorffDistance) {
   ev::MeshDistanceOptions dist;
   dist.samples = 100000;
   dist.vertices_and_edges = false;
-  const ev::VdbMatch m =
-      ev::vdb_match_hausdorff(one_atom(), 0.5, reference, dist, "reference");
+  const ev::VdbMatch m = ev::vdb_match_hausdorff(one_atom(), 0.5, reference, dist, "reference");
   EXPECT_LE(m.probes.size(), 5u);
   EXPECT_NEAR(m.value, 0.5, 0.05);
-  EXPECT_THROW(ev::vdb_match_hausdorff(one_atom(), -1, reference, dist, "r"),
-               mg::InvalidInput);
+  EXPECT_THROW(ev::vdb_match_hausdorff(one_atom(), -1, reference, dist, "r"), mg::InvalidInput);
 }
 
 TEST(Timing, ReportsMinMedianMax) {

@@ -129,9 +129,9 @@ TEST(Distances, MetroSamplingTakesEveryVertexAndWeighsOnlyFacePoints) {
     std::vector<double> free;
     for (int k = 0; k < 3; ++k)
       if (std::abs(p[k]) > 1e-12 && std::abs(p[k] - 1) > 1e-12) free.push_back(p[k]);
-    const bool on_edge = free.size() <= 1 ||
-                         (free.size() == 2 && (std::abs(free[0] - free[1]) < 1e-12 ||
-                                               std::abs(free[0] + free[1] - 1) < 1e-12));
+    const bool on_edge =
+        free.size() <= 1 || (free.size() == 2 && (std::abs(free[0] - free[1]) < 1e-12 ||
+                                                  std::abs(free[0] + free[1] - 1) < 1e-12));
     EXPECT_TRUE(on_edge) << p.transpose();
     EXPECT_EQ(s.weights[i], 0.0);
   }

@@ -264,6 +264,9 @@ class EvaluateCli(unittest.TestCase):
         r = run("distance", self.path("s1.off"), self.path("s11.off"), "--stats",
                 self.path("s1.off"))
         self.assert_refused(r, 2, "would overwrite the input")
+        out = self.path("same.off")
+        r = run("skin", ma, "-o", out, "--stats", out)
+        self.assert_refused(r, 2, "--stats and --output name the same file", [out])
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 // Normal deviation (normals.h).
-#include "evaluate/baselines.h"
 #include "evaluate/normals.h"
+#include "evaluate/baselines.h"
 #include "garbing/errors.h"
 #include "garbing/shapes.h"
 

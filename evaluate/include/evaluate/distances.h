@@ -52,7 +52,7 @@ struct OneSidedDistance {
   double mean = 0;  ///< weighted mean of d, model units
   double rms = 0;   ///< sqrt of the weighted mean of d^2, model units
   Eigen::Vector3d farthest = Eigen::Vector3d::Zero();  ///< the first sample reaching max
-  std::size_t samples = 0;           ///< all samples
+  std::size_t samples = 0;                             ///< all samples
   std::size_t weighted_samples = 0;  ///< samples with weight > 0 (those behind mean and RMS)
 };
 

@@ -13,8 +13,8 @@
 namespace mg::evaluate {
 
 struct MeshCheck {
-  MeshTopology topology;  ///< closed, 2-manifold (edges and vertex links), oriented, genus...
-  std::size_t triangles = 0;           ///< after fanning polygons
+  MeshTopology topology;      ///< closed, 2-manifold (edges and vertex links), oriented, genus...
+  std::size_t triangles = 0;  ///< after fanning polygons
   std::size_t non_triangle_faces = 0;  ///< faces with 4+ corners (fanned for the checks below)
   /// Triangles whose three corners are collinear (exact predicate; includes coincident
   /// corners). They are left out of the intersection test.

@@ -56,9 +56,9 @@ struct MeshDistanceOptions {
 
 /// Two-sided distances between MESH (side A) and REFERENCE (side B).
 struct MeshDistance {
-  TwoSidedDistance distance;    ///< a_to_b = mesh to reference
-  double diagonal = 0;          ///< REFERENCE's bounding-box diagonal, model units
-  std::size_t samples = 0;      ///< per side
+  TwoSidedDistance distance;  ///< a_to_b = mesh to reference
+  double diagonal = 0;        ///< REFERENCE's bounding-box diagonal, model units
+  std::size_t samples = 0;    ///< per side
 };
 
 /// Samples both meshes (same options on both sides) and measures both ways in parallel.

@@ -9,7 +9,8 @@ namespace mg::evaluate {
 
 struct StageTiming {
   std::vector<double> seconds;  ///< every run, in order
-  double min = 0, median = 0, max = 0;  ///< seconds; median of an even count = mean of the two middle runs
+  double min = 0, median = 0,
+         max = 0;  ///< seconds; median of an even count = mean of the two middle runs
 };
 
 /// Runs `stage` `repeats` times back to back and times each run (steady clock).

@@ -40,16 +40,16 @@ VdbMesh vdb_mesh(const MedialSurface& atoms, const VdbOptions& opt = {});
 
 /// One voxel size tried by a search.
 struct VdbProbe {
-  double voxel = 0;           ///< model units
-  double value = 0;           ///< the matched quantity: vertices, or Hausdorff in %
+  double voxel = 0;  ///< model units
+  double value = 0;  ///< the matched quantity: vertices, or Hausdorff in %
   std::size_t vertices = 0;
 };
 
 struct VdbMatch {
-  VdbMesh best;                 ///< the probe closest to the target (in log ratio)
-  double value = 0;             ///< its matched quantity
-  std::vector<VdbProbe> probes; ///< in the order tried
-  bool clamped = false;         ///< a probe hit the voxel range [diag / 2000, diag / 20]
+  VdbMesh best;                  ///< the probe closest to the target (in log ratio)
+  double value = 0;              ///< its matched quantity
+  std::vector<VdbProbe> probes;  ///< in the order tried
+  bool clamped = false;          ///< a probe hit the voxel range [diag / 2000, diag / 20]
 };
 
 /// Searches the voxel size whose mesh has about `vertices` vertices: at most `max_probes`
@@ -57,8 +57,7 @@ struct VdbMatch {
 /// log-log space (V ~ h^-2 until two probes give a slope; bisection in log h once the target
 /// is bracketed and the secant step leaves the bracket).
 /// @pre vertices >= 1; 1 <= max_probes <= 20   @throws InvalidInput
-VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices,
-                            int max_probes = 5);
+VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices, int max_probes = 5);
 
 /// The same search for a two-sided Hausdorff distance to `reference` of `percent` % of the
 /// reference's bounding-box diagonal (H ~ h to start). Distances as mesh_distance(mesh, reference,
