@@ -1,0 +1,38 @@
+#pragma once
+/// \file union_topology.h
+/// The topology of the union of the atoms' balls: the garbing's topology oracle. Computed from
+/// the dual complex of the union (the weighted alpha complex at alpha = 0 of the regular
+/// triangulation, weights r^2), which is homotopy equivalent to the union.
+
+#include "garbing/medial_surface.h"
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace mg::skeletonize {
+
+struct UnionTopology {
+  std::size_t components = 0;  ///< connected components of the union
+  long solid_euler = 0;        ///< Euler characteristic of the union (a solid)
+  /// Euler characteristic of the union's boundary surface, 2 * solid_euler: what a closed mesh
+  /// of the union has (one ball: 2, a solid torus: 0).
+  long euler = 0;
+  std::size_t hidden_atoms = 0;  ///< balls inside the union of the others' power cells
+};
+
+/// @pre atoms valid (see validate)   @throws InvalidInput
+UnionTopology union_topology(const MedialSurface& atoms);
+
+/// The simplices of the regular triangulation of the atoms (weights r^2), as atom indices:
+/// what `skeletonize --connectivity` filters. Hidden atoms have no simplex.
+struct RegularSimplices {
+  std::vector<std::array<int, 2>> edges;      ///< sorted, i < j
+  std::vector<std::array<int, 3>> triangles;  ///< sorted, i < j < k
+  std::size_t hidden_atoms = 0;
+};
+
+/// @pre atoms valid   @throws InvalidInput
+RegularSimplices regular_simplices(const MedialSurface& atoms);
+
+}  // namespace mg::skeletonize

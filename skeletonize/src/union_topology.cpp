@@ -1,0 +1,241 @@
+// The regular triangulation of the atoms and the dual complex of their union. The one CGAL
+// translation unit of mg::skeletonize for weighted triangulations.
+#include "skeletonize/union_topology.h"
+
+#include "garbing/detail/cgal_conversions.h"
+#include "garbing/errors.h"
+
+#include <CGAL/Alpha_shape_2.h>
+#include <CGAL/Alpha_shape_face_base_2.h>
+#include <CGAL/Alpha_shape_vertex_base_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Fixed_alpha_shape_3.h>
+#include <CGAL/Fixed_alpha_shape_cell_base_3.h>
+#include <CGAL/Fixed_alpha_shape_vertex_base_3.h>
+#include <CGAL/Regular_triangulation_2.h>
+#include <CGAL/Regular_triangulation_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace mg::skeletonize {
+namespace {
+
+using K = CGAL::Epick;
+
+// 3D: alpha complex at alpha = 0 over the regular triangulation, atom index as vertex info.
+using Vb3 = CGAL::Fixed_alpha_shape_vertex_base_3<
+    K, CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>>;
+using Cb3 = CGAL::Fixed_alpha_shape_cell_base_3<K, CGAL::Regular_triangulation_cell_base_3<K>>;
+using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
+using Regular3 = CGAL::Regular_triangulation_3<K, Tds3>;
+using Alpha3 = CGAL::Fixed_alpha_shape_3<Regular3>;
+
+// 2D, for coplanar centres: the same in the centres' plane.
+using Vb2 = CGAL::Alpha_shape_vertex_base_2<K, CGAL::Regular_triangulation_vertex_base_2<K>>;
+using Fb2 = CGAL::Alpha_shape_face_base_2<K, CGAL::Regular_triangulation_face_base_2<K>>;
+using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
+using Regular2 = CGAL::Regular_triangulation_2<K, Tds2>;
+using Alpha2 = CGAL::Alpha_shape_2<Regular2>;
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  std::size_t find(std::size_t i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  void unite(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
+
+ private:
+  std::vector<std::size_t> parent_;
+};
+
+Regular3 regular_triangulation(const MedialSurface& atoms) {
+  std::vector<std::pair<Regular3::Weighted_point, int>> points;
+  points.reserve(atoms.atoms.size());
+  for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
+    points.emplace_back(detail::to_weighted_point<K>(atoms.atoms[i]), static_cast<int>(i));
+  return Regular3(points.begin(), points.end());
+}
+
+/// Counts of the dual complex: vertices (kept atoms), edges, triangles, tetrahedra, and the
+/// components through its edges.
+/// CGAL classifies a vertex by its weight alone, so a ball covered by others (its ball misses
+/// its own power cell) shows up as an isolated singular vertex. A vertex without complex edges
+/// belongs to the dual complex only if its ball meets its power cell, which for an isolated
+/// vertex means its centre lies in its power cell (its own nearest power vertex): checked.
+struct Complex {
+  std::vector<int> vertices;
+  std::vector<std::array<int, 2>> edges;
+  long triangles = 0, tetrahedra = 0;
+};
+
+UnionTopology summarise(const Complex& c, std::size_t n_atoms, std::size_t hidden) {
+  UnionFind sets(n_atoms);
+  for (const auto& e : c.edges) sets.unite(e[0], e[1]);
+  UnionTopology t;
+  std::vector<std::size_t> roots;
+  for (int v : c.vertices) roots.push_back(sets.find(v));
+  std::sort(roots.begin(), roots.end());
+  t.components = static_cast<std::size_t>(std::unique(roots.begin(), roots.end()) - roots.begin());
+  t.solid_euler = static_cast<long>(c.vertices.size()) - static_cast<long>(c.edges.size()) +
+                  c.triangles - c.tetrahedra;
+  t.euler = 2 * t.solid_euler;
+  t.hidden_atoms = hidden;
+  return t;
+}
+
+UnionTopology topology_3d(const MedialSurface& atoms, Regular3& rt) {
+  const std::size_t hidden = atoms.atoms.size() - rt.number_of_vertices();
+  Alpha3 alpha(rt, 0);  // takes the triangulation over (swaps it)
+  Complex c;
+  for (auto e = alpha.finite_edges_begin(); e != alpha.finite_edges_end(); ++e)
+    if (alpha.classify(*e) != Alpha3::EXTERIOR)
+      c.edges.push_back({e->first->vertex(e->second)->info(), e->first->vertex(e->third)->info()});
+  std::vector<char> linked(atoms.atoms.size(), 0);
+  for (const auto& e : c.edges) linked[e[0]] = linked[e[1]] = 1;
+  for (auto v = alpha.finite_vertices_begin(); v != alpha.finite_vertices_end(); ++v)
+    if (alpha.classify(v) != Alpha3::EXTERIOR &&
+        (linked[v->info()] || alpha.nearest_power_vertex(v->point().point()) == Alpha3::Vertex_handle(v)))
+      c.vertices.push_back(v->info());
+  for (auto f = alpha.finite_facets_begin(); f != alpha.finite_facets_end(); ++f)
+    if (alpha.classify(*f) != Alpha3::EXTERIOR) ++c.triangles;
+  for (auto k = alpha.finite_cells_begin(); k != alpha.finite_cells_end(); ++k)
+    if (alpha.classify(k) != Alpha3::EXTERIOR) ++c.tetrahedra;
+  return summarise(c, atoms.atoms.size(), hidden);
+}
+
+/// Coplanar centres: the union is symmetric about their plane, so its dual complex is the
+/// planar one of the same weighted points.
+UnionTopology topology_2d(const MedialSurface& atoms) {
+  const auto& a = atoms.atoms;
+  const Eigen::Vector3d p0 = a[0].centre;
+  Eigen::Vector3d e1 = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+  double best = 0;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    const Eigen::Vector3d d = a[i].centre - p0;
+    if (d.norm() > best) {
+      best = d.norm();
+      e1 = d / d.norm();
+    }
+  }
+  best = 0;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    const Eigen::Vector3d n = e1.cross(a[i].centre - p0);
+    if (n.norm() > best) {
+      best = n.norm();
+      normal = n / n.norm();
+    }
+  }
+  const Eigen::Vector3d e2 = normal.cross(e1);
+  std::vector<std::pair<Regular2::Weighted_point, int>> points;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Eigen::Vector3d d = a[i].centre - p0;
+    points.emplace_back(Regular2::Weighted_point(K::Point_2(d.dot(e1), d.dot(e2)), a[i].radius * a[i].radius),
+                        static_cast<int>(i));
+  }
+  // Regular_triangulation_2 has no info vertex base here: map back by exact coordinates.
+  Alpha2 alpha(0, Alpha2::GENERAL);
+  std::vector<Regular2::Weighted_point> wp;
+  for (const auto& p : points) wp.push_back(p.first);
+  alpha.make_alpha_shape(wp.begin(), wp.end());
+  alpha.set_alpha(0);
+  std::vector<std::pair<std::pair<double, double>, int>> index;
+  for (const auto& p : points) index.push_back({{p.first.x(), p.first.y()}, p.second});
+  std::sort(index.begin(), index.end());
+  auto atom_of = [&](Alpha2::Vertex_handle v) {
+    const auto key = std::make_pair(v->point().x(), v->point().y());
+    // Equal centres keep the largest weight in the triangulation: any index of that centre.
+    auto it = std::lower_bound(index.begin(), index.end(), std::make_pair(key, -1));
+    return it->second;
+  };
+  Complex c;
+  for (auto e = alpha.finite_edges_begin(); e != alpha.finite_edges_end(); ++e)
+    if (alpha.classify(*e) != Alpha2::EXTERIOR)
+      c.edges.push_back({atom_of(e->first->vertex(Regular2::cw(e->second))),
+                         atom_of(e->first->vertex(Regular2::ccw(e->second)))});
+  std::vector<char> linked(a.size(), 0);
+  for (const auto& e : c.edges) linked[e[0]] = linked[e[1]] = 1;
+  for (auto v = alpha.finite_vertices_begin(); v != alpha.finite_vertices_end(); ++v)
+    if (alpha.classify(v) != Alpha2::EXTERIOR &&
+        (linked[atom_of(v)] || alpha.nearest_power_vertex(v->point().point()) == Alpha2::Vertex_handle(v)))
+      c.vertices.push_back(atom_of(v));
+  for (auto f = alpha.finite_faces_begin(); f != alpha.finite_faces_end(); ++f)
+    if (alpha.classify(f) != Alpha2::EXTERIOR) ++c.triangles;
+  return summarise(c, a.size(), a.size() - alpha.number_of_vertices());
+}
+
+/// Collinear (or coincident) centres: the union is a solid of revolution whose sections are
+/// disks, so each component is contractible; components are the overlapping runs of the
+/// balls' intervals on the line.
+UnionTopology topology_1d(const MedialSurface& atoms) {
+  const auto& a = atoms.atoms;
+  Eigen::Vector3d dir = Eigen::Vector3d::UnitX();
+  double best = 0;
+  for (const auto& x : a)
+    if ((x.centre - a[0].centre).norm() > best) {
+      best = (x.centre - a[0].centre).norm();
+      dir = (x.centre - a[0].centre) / best;
+    }
+  std::vector<std::pair<double, double>> intervals;
+  for (const auto& x : a) {
+    const double t = (x.centre - a[0].centre).dot(dir);
+    intervals.push_back({t - x.radius, t + x.radius});
+  }
+  std::sort(intervals.begin(), intervals.end());
+  UnionTopology t;
+  double end = -INFINITY;
+  for (const auto& [lo, hi] : intervals) {
+    if (lo > end) ++t.components;
+    end = std::max(end, hi);
+  }
+  t.solid_euler = static_cast<long>(t.components);
+  t.euler = 2 * t.solid_euler;
+  return t;
+}
+
+}  // namespace
+
+UnionTopology union_topology(const MedialSurface& atoms) {
+  validate(atoms);
+  Regular3 rt = regular_triangulation(atoms);
+  if (rt.dimension() == 3) return topology_3d(atoms, rt);
+  // Fewer dimensions: the balls with a vertex (the others lie inside the union of these)
+  // have coplanar or collinear centres.
+  MedialSurface visible;
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+    visible.atoms.push_back(atoms.atoms[v->info()]);
+  UnionTopology t = rt.dimension() == 2 ? topology_2d(visible) : topology_1d(visible);
+  t.hidden_atoms = atoms.atoms.size() - visible.atoms.size();
+  return t;
+}
+
+RegularSimplices regular_simplices(const MedialSurface& atoms) {
+  validate(atoms);
+  const Regular3 rt = regular_triangulation(atoms);
+  RegularSimplices out;
+  out.hidden_atoms = atoms.atoms.size() - rt.number_of_vertices();
+  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
+    std::array<int, 2> s = {e->first->vertex(e->second)->info(), e->first->vertex(e->third)->info()};
+    std::sort(s.begin(), s.end());
+    out.edges.push_back(s);
+  }
+  for (auto f = rt.finite_facets_begin(); f != rt.finite_facets_end(); ++f) {
+    std::array<int, 3> s;
+    if (rt.dimension() == 3) {
+      for (int k = 0, j = 0; k < 4; ++k)
+        if (k != f->second) s[j++] = f->first->vertex(k)->info();
+    } else {  // coplanar centres: the facets are the cells' three vertices
+      for (int k = 0; k < 3; ++k) s[k] = f->first->vertex(k)->info();
+    }
+    std::sort(s.begin(), s.end());
+    out.triangles.push_back(s);
+  }
+  std::sort(out.edges.begin(), out.edges.end());
+  std::sort(out.triangles.begin(), out.triangles.end());
+  return out;
+}
+
+}  // namespace mg::skeletonize
