@@ -1,5 +1,7 @@
 // evaluate: distances, smoothness and validity checks, timed baselines.
 //   evaluate distance MESH REFERENCE [--samples N] [--seed S] [--faces-only] [--json]
+//   evaluate atoms MESH ATOMS.ma [--cones rt|all|edges|none] [--cone-filter F] [--samples N]
+//                  [--seed S] [--diagonal D] [--json]
 //   evaluate normals MESH REFERENCE [--samples N] [--seed S] [--flat-reference] [--json]
 //   evaluate check MESH [--json]
 //   evaluate skin INPUT.ma -o OUT [--shrink F] [--subdivisions K] [--repeat K] [--json]
@@ -8,6 +10,7 @@
 //                [--samples N] [--repeat K] [--json]
 // Every sub-command also takes --stats FILE (the JSON report, written atomically); --threads N
 // limits the worker threads.
+#include "evaluate/atoms_distance.h"
 #include "evaluate/baselines.h"
 #include "evaluate/mesh_checks.h"
 #include "evaluate/mesh_distance.h"
@@ -144,6 +147,24 @@ int evaluate_main(int argc, char** argv) {
                      "vertices, edge points and face points (Metro)");
   distance_report.add_options(distance);
 
+  // atoms
+  auto* atoms_cmd = app.add_subcommand(
+      "atoms", "two-sided distances between MESH and G, the union of the atoms' spheres and cones");
+  std::string atoms_file, cones = "rt";
+  double cone_filter = 0, diagonal = 0;
+  Report atoms_report;
+  atoms_cmd->add_option("mesh", mesh_path, "mesh to judge")->required();
+  atoms_cmd->add_option("atoms", atoms_file, "medial atoms (.ma, or x y z r lines)")->required();
+  atoms_cmd->add_option("--cones", cones, "cone pairs of G: rt, all, edges or none (as garb)")
+      ->check(CLI::IsMember({"rt", "all", "edges", "none"}));
+  atoms_cmd->add_option("--cone-filter", cone_filter, "as garb --cone-filter")->check(CLI::Range(0.0, 1.0));
+  atoms_cmd->add_option("--samples", samples, "samples per side (0 = max(1e5, 10 V_mesh))");
+  atoms_cmd->add_option("--seed", seed, "random seed of the sampling");
+  atoms_cmd->add_option("--diagonal", diagonal,
+                        "diagonal for the percentages, model units (0 = MESH's bounding box)")
+      ->check(CLI::NonNegativeNumber);
+  atoms_report.add_options(atoms_cmd);
+
   // normals
   auto* normals = app.add_subcommand(
       "normals", "angle between MESH's facet normals and REFERENCE's normal at the closest point");
@@ -261,6 +282,49 @@ int evaluate_main(int argc, char** argv) {
          << r.samples << " samples per side, " << (faces_only ? "faces" : "Metro")
          << " sampling, seed " << seed << ", " << std::setprecision(3) << seconds << " s)\n";
     distance_report.emit(j, text.str());
+    return 0;
+  }
+
+  if (*atoms_cmd) {
+    atoms_report.check({mesh_path, atoms_file});
+    const mg::PolygonSoup mesh = mg::read_polygon_soup(mesh_path);
+    const mg::MedialSurface atoms = mg::read_medial_surface(atoms_file);
+    ev::AtomsDistanceOptions opt;
+    opt.cones.source = mg::parse_cone_source(cones);
+    opt.cones.min_circle_ratio = cone_filter;
+    opt.samples = samples;
+    opt.seed = seed;
+    const ev::AtomsDistance r = ev::atoms_distance(mesh, atoms, opt, mesh_path);
+    const double seconds = seconds_since(t0);
+    const double diag = diagonal > 0 ? diagonal : r.diagonal;
+    const auto& d = r.distance;
+    Json j;
+    j["mesh"] = mesh_path;
+    j["atoms"] = atoms_file;
+    j["cones"] = r.cones;
+    j["cone_source"] = cones;
+    j["cone_filter"] = cone_filter;
+    j["mesh_samples"] = r.mesh_samples;
+    j["g_samples"] = r.g_samples;
+    j["g_area_uniform_samples"] = r.g_unbiased;
+    j["seed"] = seed;
+    j["diagonal"] = diag;
+    j["hausdorff"] = d.hausdorff;
+    j["hausdorff_pct"] = ev::percent_of_diagonal(d.hausdorff, diag);
+    j["rms"] = d.rms;
+    j["rms_pct"] = ev::percent_of_diagonal(d.rms, diag);
+    j["mean"] = d.mean;
+    j["mean_pct"] = ev::percent_of_diagonal(d.mean, diag);
+    j["mesh_to_g"] = one_sided_json(d.a_to_b, diag);
+    j["g_to_mesh"] = one_sided_json(d.b_to_a, diag);
+    j["seconds"] = seconds;
+    std::ostringstream text;
+    text << "mesh -> G: max " << length_text(d.a_to_b.max, diag) << ", RMS " << length_text(d.a_to_b.rms, diag)
+         << "\nG -> mesh: max " << length_text(d.b_to_a.max, diag) << ", RMS " << length_text(d.b_to_a.rms, diag)
+         << "\nHausdorff " << length_text(d.hausdorff, diag) << ", RMS " << length_text(d.rms, diag)
+         << "\n(G: " << atoms.atoms.size() << " spheres, " << r.cones << " cones; " << r.mesh_samples
+         << " mesh samples, " << r.g_samples << " samples of G; " << std::setprecision(3) << seconds << " s)\n";
+    atoms_report.emit(j, text.str());
     return 0;
   }
 

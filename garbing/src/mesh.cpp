@@ -56,9 +56,11 @@ Mesh mesh_from_manifold_soup(const PolygonSoup& soup, const std::string& name) {
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
     loop.clear();
     for (int v : soup.faces[f]) loop.push_back(handles[v]);
-    if (!mesh.add_face(loop).is_valid())
-      throw TopologyError(name + ": face " + std::to_string(f) +
-                          " was refused by the half-edge mesh although the soup is manifold");
+    if (!mesh.add_face(loop).is_valid()) {
+      const MeshTopology t = mesh_topology(soup);
+      throw TopologyError(name + ": face " + std::to_string(f) + " was refused by the half-edge mesh: " +
+                          (t.first_problem.empty() ? "the soup is an oriented manifold" : t.first_problem));
+    }
   }
   return mesh;
 }

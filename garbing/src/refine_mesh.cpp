@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace mg {
 namespace {
@@ -57,13 +58,15 @@ class Refiner {
 
   // --- the starting mesh ---------------------------------------------------------------------
 
-  /// P(c) of a leaf: Spheres(c) and the cones meeting the cube (cached per leaf).
+  /// P(c) of a leaf: Spheres(c) and the cones meeting the cube through one of those balls
+  /// (a cone is the hull of its two balls, so it meets the cube when one of them does; a cone
+  /// entering the cube only through its waist, between two balls that both miss it, is left
+  /// out: rare, and finding it costs a box query per leaf through thousands of overlapping
+  /// cone boxes).
   void add_leaf_primitives(int leaf, std::vector<PrimitiveId>& out) const {
     const OctreeCell& cell = tree_.cells[leaf];
     out.insert(out.end(), cell.spheres.begin(), cell.spheres.end());
-    const double side = tree_.side(cell.level);
-    const Vec3 lo(cell.ijk[0] * side, cell.ijk[1] * side, cell.ijk[2] * side);
-    shape_->cones_meeting_box(lo, lo + Vec3::Constant(side), out);
+    shape_->cones_of_atoms(cell.spheres, out);
   }
 
   /// P for a point (vertices of --no-dual and --refine): the primitives meeting the closed
@@ -151,28 +154,30 @@ class Refiner {
 
   // --- migration -----------------------------------------------------------------------------
 
+  /// Moves v along m(v) onto G: outside the union, to where the line first enters it;
+  /// inside, back along -m(v) to where it leaves. One line query over a short segment first
+  /// (1.5 leaf sides each way, where nearly every vertex lands), then the full max_travel.
   Outcome migrate(const Vec3& v, const std::vector<PrimitiveId>& prims, double side, Vec3& out) const {
     Vec3 m = Vec3::Zero();
     for (PrimitiveId g : prims) m -= shape_->migration_vector(g, v);
     const double norm = m.norm();
-    Outcome outcome = Outcome::ray;
     if (!(norm > 1e-12)) {
-      outcome = Outcome::zero_direction;
-    } else {
-      const Vec3 dir = m / norm;
-      const double t_max = opt_.max_travel * side;
-      double t;
-      const bool inside = shape_->contains(v);
-      const bool hit = inside ? shape_->run_end(v, -dir, t_max, t) : shape_->first_entry(v, dir, t_max, t);
-      if (hit) {
-        out = inside ? Vec3(v - t * dir) : Vec3(v + t * dir);
-        return outcome;
-      }
-      const bool anywhere = inside ? shape_->run_end(v, -dir, 1e300, t) : shape_->first_entry(v, dir, 1e300, t);
-      outcome = anywhere ? Outcome::too_far : Outcome::missed;
+      out = shape_->closest_point(v);
+      return Outcome::zero_direction;
     }
+    const Vec3 dir = m / norm;
+    double t;
+    bool inside;
+    for (const double reach : {std::min(1.5, opt_.max_travel), opt_.max_travel}) {
+      if (shape_->line_to_boundary(v, dir, reach * side, t, inside)) {
+        out = v + t * dir;
+        return Outcome::ray;
+      }
+      if (reach >= opt_.max_travel) break;
+    }
+    const bool anywhere = inside ? shape_->run_end(v, -dir, 1e300, t) : shape_->first_entry(v, dir, 1e300, t);
     out = shape_->closest_point(v);
-    return outcome;
+    return anywhere ? Outcome::too_far : Outcome::missed;
   }
 
   void count(Outcome o) {
@@ -201,14 +206,23 @@ class Refiner {
   // --- triangulation and subdivision ---------------------------------------------------------
 
   /// Triangulation of a polygon (vertex ids) minimising the total length of its diagonals
-  /// (dynamic programming), which keeps the triangles of non-planar dual faces well shaped.
-  void triangulate_polygon(const std::vector<int>& poly, std::vector<std::array<int, 3>>& out) const {
+  /// (dynamic programming), which keeps the triangles of non-planar dual faces well shaped. A
+  /// diagonal that is already an edge of the mesh, or a diagonal of an earlier polygon (two
+  /// dual faces can share more than one vertex pair), is forbidden: it would be shared by more
+  /// than two faces. When no triangulation
+  /// avoids them, the polygon is fanned from a new vertex at its centroid, moved onto G.
+  void triangulate_polygon(const std::vector<int>& poly, std::set<std::pair<int, int>>& edges,
+                           std::vector<std::array<int, 3>>& out) {
     const int n = static_cast<int>(poly.size());
     if (n == 3) {
       out.push_back({poly[0], poly[1], poly[2]});
       return;
     }
-    auto len = [&](int i, int j) { return (position_[poly[i]] - position_[poly[j]]).norm(); };
+    auto len = [&](int i, int j) -> double {
+      const std::pair<int, int> e(std::min(poly[i], poly[j]), std::max(poly[i], poly[j]));
+      if (edges.count(e)) return INFINITY;
+      return (position_[poly[i]] - position_[poly[j]]).norm();
+    };
     std::vector<double> cost(n * n, 0.0);
     std::vector<int> split(n * n, -1);
     for (int gap = 2; gap < n; ++gap)
@@ -226,6 +240,19 @@ class Refiner {
         }
         cost[i * n + j] = best;
       }
+    if (!std::isfinite(cost[n - 1])) {
+      Vec3 centroid = Vec3::Zero();
+      for (int v : poly) centroid += position_[v];
+      centroid /= n;
+      const int c = static_cast<int>(position_.size());
+      start_.push_back(centroid);
+      position_.push_back(shape_->closest_point(centroid));
+      primitives_.emplace_back();
+      leaf_side_.push_back(0);
+      ++stats_.centroid_fans;
+      for (int i = 0; i < n; ++i) out.push_back({poly[i], poly[(i + 1) % n], c});
+      return;
+    }
     // Unroll the split table.
     std::vector<std::pair<int, int>> stack = {{0, n - 1}};
     while (!stack.empty()) {
@@ -234,14 +261,23 @@ class Refiner {
       if (j - i < 2) continue;
       const int k = split[i * n + j];
       out.push_back({poly[i], poly[k], poly[j]});
+      for (const auto& [a, b] : {std::make_pair(i, k), std::make_pair(k, j)})
+        if (b > a + 1) edges.emplace(std::min(poly[a], poly[b]), std::max(poly[a], poly[b]));
       stack.push_back({i, k});
       stack.push_back({k, j});
     }
   }
 
-  std::vector<std::array<int, 3>> triangulate() const {
+  std::vector<std::array<int, 3>> triangulate() {
+    // Every edge of the mesh so far: the polygons' edges, then each chosen diagonal.
+    std::set<std::pair<int, int>> edges;
+    for (const auto& poly : polygons_)
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const int a = poly[i], b = poly[(i + 1) % poly.size()];
+        edges.emplace(std::min(a, b), std::max(a, b));
+      }
     std::vector<std::array<int, 3>> triangles;
-    for (const auto& poly : polygons_) triangulate_polygon(poly, triangles);
+    for (const auto& poly : polygons_) triangulate_polygon(poly, edges, triangles);
     return triangles;
   }
 

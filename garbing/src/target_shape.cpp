@@ -247,12 +247,12 @@ struct TargetShape::Bvh {
   std::vector<int> order;
   std::vector<Box> boxes;
 
-  void build(std::vector<Box> primitive_boxes) {
+  /// Over the primitives `ids` (their boxes indexed by id).
+  void build(std::vector<Box> primitive_boxes, std::vector<int> ids) {
     boxes = std::move(primitive_boxes);
-    order.resize(boxes.size());
-    std::iota(order.begin(), order.end(), 0);
-    nodes.reserve(2 * boxes.size() / 4 + 2);
-    if (!boxes.empty()) build(0, static_cast<int>(boxes.size()));
+    order = std::move(ids);
+    nodes.reserve(2 * order.size() / 4 + 2);
+    if (!order.empty()) build(0, static_cast<int>(order.size()));
   }
 
   int build(int first, int last) {
@@ -285,6 +285,35 @@ struct TargetShape::Bvh {
     return id;
   }
 
+  /// Visits the primitives whose boxes the segment origin + t dir, t in [0, t_max], crosses, in
+  /// increasing order of the parameter where the segment enters their leaf node's box, until
+  /// `more(t_entry)` says no node entered at t_entry or later can matter.
+  template <class More, class Visit>
+  void visit_along_ray(const Vec3& origin, const Vec3& dir, double t_max, More&& more,
+                       Visit&& visit_primitive) const {
+    if (nodes.empty()) return;
+    const Vec3 inv = dir.cwiseInverse();
+    using Entry = std::pair<double, int>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    auto push = [&](int id) {
+      double a = 0, z = t_max;
+      if (nodes[id].box.clip(origin, inv, a, z)) queue.push({a, id});
+    };
+    push(0);
+    while (!queue.empty()) {
+      const auto [t, id] = queue.top();
+      queue.pop();
+      if (!more(t)) return;
+      const Node& n = nodes[id];
+      if (n.right < 0) {
+        for (int i = n.first; i < n.first + n.count; ++i) visit_primitive(order[i]);
+      } else {
+        push(id + 1);
+        push(n.right);
+      }
+    }
+  }
+
   /// Visits every primitive whose box passes `keep_box`, in no particular order.
   template <class KeepBox, class Visit>
   void visit(KeepBox&& keep_box, Visit&& visit_primitive) const {
@@ -310,15 +339,36 @@ TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::arra
     : spheres_(atoms.atoms), bvh_(std::make_unique<Bvh>()) {
   cones_.reserve(pairs.size());
   for (const auto& p : pairs) cones_.push_back(make_cone(atoms.atoms[p[0]], atoms.atoms[p[1]], p[0], p[1]));
+  cones_by_atom_start_.assign(spheres_.size() + 1, 0);
+  for (const auto& c : cones_) {
+    ++cones_by_atom_start_[c.a + 1];
+    ++cones_by_atom_start_[c.b + 1];
+  }
+  for (std::size_t i = 0; i < spheres_.size(); ++i) cones_by_atom_start_[i + 1] += cones_by_atom_start_[i];
+  cones_by_atom_.resize(2 * cones_.size());
+  std::vector<int> fill(cones_by_atom_start_.begin(), cones_by_atom_start_.end() - 1);
+  for (std::size_t k = 0; k < cones_.size(); ++k) {
+    const int id = static_cast<int>(spheres_.size() + k);
+    cones_by_atom_[fill[cones_[k].a]++] = id;
+    cones_by_atom_[fill[cones_[k].b]++] = id;
+  }
   std::vector<Box> boxes;
   boxes.reserve(spheres_.size() + cones_.size());
   for (const auto& s : spheres_) boxes.push_back(sphere_box(s));
   for (const auto& c : cones_) {
-    Box b = sphere_box(atoms.atoms[c.a]);
-    b.grow(sphere_box(atoms.atoms[c.b]));
+    // The frustum's own box: the boxes of its two end disks (a disk of radius rho and unit
+    // normal u spans rho * sqrt(1 - u_k^2) along axis k). Much tighter than the balls' boxes.
+    const Vec3 half = c.u.cwiseAbs2().unaryExpr([](double x) { return std::sqrt(std::max(0.0, 1 - x)); });
+    Box b;
+    for (const auto& [t, rho] : {std::make_pair(c.t_lo, c.rho_lo), std::make_pair(c.t_hi, c.rho_hi)}) {
+      const Vec3 o = c.c1 + t * c.u;
+      b.grow({o - rho * half, o + rho * half});
+    }
     boxes.push_back(b);
   }
-  bvh_->build(std::move(boxes));
+  std::vector<int> ids(boxes.size());
+  std::iota(ids.begin(), ids.end(), 0);
+  bvh_->build(std::move(boxes), std::move(ids));
 }
 
 TargetShape::~TargetShape() = default;
@@ -358,50 +408,93 @@ bool TargetShape::contains(const Vec3& p) const {
   return inside;
 }
 
-namespace {
+bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& dir, double& t0,
+                               double& t1) const {
+  return is_sphere(i) ? ray_sphere(spheres_[i], origin, dir, t0, t1) : ray_cone(cone(i), origin, dir, t0, t1);
+}
 
-/// Intervals [t_in, t_out] (t_out >= 0) of the ray inside each primitive met on [0, t_max].
-template <class Shape, class Bvh>
-std::vector<std::pair<double, double>> ray_runs(const Shape& shape, const Bvh& bvh, const Vec3& origin,
-                                                const Vec3& dir, double t_max) {
-  const Vec3 inv = dir.cwiseInverse();
-  std::vector<std::pair<double, double>> runs;
-  bvh.visit(
+bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max, double& t,
+                                   bool& inside) const {
+  // One pass over the segment [-t_max, t_max]: every interval, then the decision.
+  const Vec3 start = v - t_max * dir;
+  std::vector<std::pair<double, double>> runs;  // in units of dir from v
+  bvh_->visit(
       [&](const Box& b) {
-        double a = 0, z = t_max;
-        return b.clip(origin, inv, a, z);
+        double a = 0, z = 2 * t_max;
+        return b.clip(start, dir.cwiseInverse(), a, z);
       },
       [&](int i) {
         double a, z;
-        const bool hit = shape.is_sphere(i) ? ray_sphere(shape.sphere(i), origin, dir, a, z)
-                                            : ray_cone(shape.cone(i), origin, dir, a, z);
-        if (hit && z >= 0) runs.emplace_back(a, z);
+        if (ray_interval(i, v, dir, a, z) && z >= -t_max && a <= t_max) runs.emplace_back(a, z);
       });
-  return runs;
+  inside = false;
+  for (const auto& [a, z] : runs)
+    if (a <= 0 && z >= 0) {
+      inside = true;
+      break;
+    }
+  if (!inside) {
+    double first = kInf;
+    for (const auto& [a, z] : runs)
+      if (a > 0) first = std::min(first, a);
+    if (first > t_max) return false;
+    t = first;
+    return true;
+  }
+  // Leave the union toward negative t: merge the runs containing 0 downward.
+  std::sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+  const double slack = 1e-12 * (1 + t_max);
+  double end = 0;
+  for (const auto& [a, z] : runs) {
+    if (z < end - slack) break;
+    end = std::min(end, a);
+  }
+  if (end < -t_max) return false;
+  t = end;
+  return true;
 }
 
-}  // namespace
-
 bool TargetShape::first_entry(const Vec3& origin, const Vec3& dir, double t_max, double& t) const {
-  double first = kInf;
-  for (const auto& r : ray_runs(*this, *bvh_, origin, dir, t_max))
-    if (r.first >= 0) first = std::min(first, r.first);
-  if (first > t_max) return false;
-  t = first;
+  // Best-first along the ray: nodes entered after the best entry so far cannot improve it.
+  double best = kInf;
+  bvh_->visit_along_ray(origin, dir, t_max, [&](double entry) { return entry < best; },
+                        [&](int i) {
+                          double a, z;
+                          if (ray_interval(i, origin, dir, a, z) && a >= 0 && a < best) best = a;
+                        });
+  if (best > t_max) return false;
+  t = best;
   return true;
 }
 
 bool TargetShape::run_end(const Vec3& origin, const Vec3& dir, double t_max, double& t) const {
-  auto runs = ray_runs(*this, *bvh_, origin, dir, t_max);
-  std::sort(runs.begin(), runs.end());
+  // Grow the run [.., end] in order of entry: an interval joins when it starts before the end;
+  // later ones wait in a heap until the end reaches them. Nodes entered after the end (plus
+  // slack) cannot extend it.
   const double slack = 1e-12 * (1 + t_max);
   double end = 0;
   bool started = false;
-  for (const auto& r : runs) {
-    if (r.first > end + slack) break;
-    started = started || r.first <= slack;
-    end = std::max(end, r.second);
-  }
+  using Interval = std::pair<double, double>;
+  std::priority_queue<Interval, std::vector<Interval>, std::greater<>> waiting;
+  auto absorb = [&](double a, double z) {
+    if (a <= end + slack) {
+      started = started || a <= slack;
+      if (z > end) {
+        end = z;
+        while (!waiting.empty() && waiting.top().first <= end + slack) {
+          end = std::max(end, waiting.top().second);
+          waiting.pop();
+        }
+      }
+    } else {
+      waiting.push({a, z});
+    }
+  };
+  bvh_->visit_along_ray(origin, dir, t_max, [&](double entry) { return entry <= end + slack && end <= t_max; },
+                        [&](int i) {
+                          double a, z;
+                          if (ray_interval(i, origin, dir, a, z) && z >= 0) absorb(a, z);
+                        });
   if (!started || end > t_max) return false;  // not inside, or the run goes on past t_max
   t = end;
   return true;
@@ -442,42 +535,56 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
     }
     return out;
   }
-  // Inside: exposed closest surface points of the primitives containing p, and exits along
-  // probe directions; the nearest wins.
+  // Inside: the nearest exposed candidate. Candidates: each containing primitive's nearest
+  // surface point, tried nearest first (the first exposed one bounds the rest); the circles of
+  // pairs of those spheres, which lie no nearer than either sphere's own point; and, only if
+  // nothing was found, the exits along 26 directions.
+  struct Candidate {
+    double distance;
+    int id;
+    Vec3 point;
+  };
+  std::vector<Candidate> around;
+  const double on_surface = -1e-12 * (1 + p.norm());  // p on a surface counts as inside it
+  bvh_->visit([&](const Box& b) { return b.squared_distance(p) == 0; },
+              [&](int i) {
+                if (!primitive_contains(i, p, on_surface)) return;
+                Vec3 q;
+                if (is_sphere(i)) {
+                  const Vec3 d = p - spheres_[i].centre;
+                  q = spheres_[i].centre +
+                      spheres_[i].radius * (d.squaredNorm() > 0 ? Vec3(d.normalized()) : Vec3(Vec3::UnitX()));
+                } else {
+                  q = cone_closest_lateral_point(cone(i), p);
+                }
+                around.push_back({(q - p).norm(), i, q});
+              });
+  std::sort(around.begin(), around.end(), [](const Candidate& a, const Candidate& b) {
+    return a.distance < b.distance || (a.distance == b.distance && a.id < b.id);
+  });
+  auto exposed = [&](const Vec3& q, int i, int j) {
+    const double eps = 1e-12 * (1 + q.norm());
+    bool free = true;
+    bvh_->visit([&](const Box& bb) { return free && bb.squared_distance(q) == 0; },
+                [&](int k) { free = free && (k == i || k == j || !primitive_contains(k, q, eps)); });
+    return free;
+  };
   double best = kInf;
   Vec3 out = p;
-  std::vector<int> around;
-  bvh_->visit([&](const Box& b) { return b.squared_distance(p) == 0; },
-              [&](int i) { around.push_back(i); });
-  std::sort(around.begin(), around.end());
-  for (int i : around) {
-    Vec3 q;
-    if (is_sphere(i)) {
-      const Vec3 d = p - spheres_[i].centre;
-      if (d.squaredNorm() == 0) continue;
-      q = spheres_[i].centre + spheres_[i].radius * d / d.norm();
-    } else {
-      q = cone_closest_lateral_point(cone(i), p);
-    }
-    const double e2 = (q - p).squaredNorm();
-    if (e2 >= best) continue;
-    const double eps = 1e-12 * (1 + std::sqrt(e2));
-    bool exposed = true;
-    bvh_->visit([&](const Box& b) { return exposed && b.squared_distance(q) == 0; },
-                [&](int j) { exposed = exposed && (j == i || !primitive_contains(j, q, eps)); });
-    if (exposed) {
-      best = e2;
-      out = q;
+  for (const Candidate& c : around) {
+    if (c.distance >= best) break;
+    if (exposed(c.point, c.id, c.id)) {
+      best = c.distance;
+      out = c.point;
+      break;
     }
   }
-  // Circles where two of the spheres around p meet.
-  std::vector<int> balls;
-  for (int i : around)
-    if (is_sphere(i)) balls.push_back(i);
-  for (std::size_t x = 0; x < balls.size(); ++x)
-    for (std::size_t y = x + 1; y < balls.size(); ++y) {
-      const MedialAtom& a = spheres_[balls[x]];
-      const MedialAtom& b = spheres_[balls[y]];
+  for (std::size_t x = 0; x < around.size() && around[x].distance < best; ++x) {
+    if (!is_sphere(around[x].id)) continue;
+    for (std::size_t y = x + 1; y < around.size() && around[y].distance < best; ++y) {
+      if (!is_sphere(around[y].id)) continue;
+      const MedialAtom& a = spheres_[around[x].id];
+      const MedialAtom& b = spheres_[around[y].id];
       const Vec3 axis = b.centre - a.centre;
       const double L = axis.norm();
       if (!(L < a.radius + b.radius) || !(L > std::abs(a.radius - b.radius))) continue;
@@ -488,25 +595,18 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
       Vec3 radial = (p - centre) - (p - centre).dot(n) * n;
       if (radial.squaredNorm() == 0) radial = n.unitOrthogonal();
       const Vec3 q = centre + radius * radial.normalized();
-      const double e2 = (q - p).squaredNorm();
-      if (e2 >= best) continue;
-      const double eps = 1e-12 * (1 + std::sqrt(e2));
-      bool exposed = true;
-      bvh_->visit([&](const Box& bb) { return exposed && bb.squared_distance(q) == 0; },
-                  [&](int j) {
-                    exposed = exposed && (j == balls[x] || j == balls[y] || !primitive_contains(j, q, eps));
-                  });
-      if (exposed) {
-        best = e2;
+      const double d = (q - p).norm();
+      if (d < best && exposed(q, around[x].id, around[y].id)) {
+        best = d;
         out = q;
       }
     }
-  const double reach = std::isfinite(best) ? std::sqrt(best) : kInf;
+  }
+  if (std::isfinite(best)) return out;
   for (const Vec3& d : probe_directions()) {
     double t;
-    const double t_max = std::isfinite(reach) ? reach : 1e300;
-    if (run_end(p, d, t_max, t) && t * t < best) {
-      best = t * t;
+    if (run_end(p, d, std::isfinite(best) ? best : 1e300, t) && t < best) {
+      best = t;
       out = p + t * d;
     }
   }
@@ -624,11 +724,13 @@ void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi, std::ve
   std::sort(out.begin() + static_cast<long>(start), out.end());
 }
 
-void TargetShape::cones_meeting_box(const Vec3& lo, const Vec3& hi, std::vector<PrimitiveId>& out) const {
-  std::vector<PrimitiveId> all;
-  primitives_meeting_box(lo, hi, all);
-  for (int i : all)
-    if (!is_sphere(i)) out.push_back(i);
+void TargetShape::cones_of_atoms(const std::vector<int>& atoms, std::vector<PrimitiveId>& out) const {
+  const std::size_t start = out.size();
+  for (int a : atoms)
+    out.insert(out.end(), cones_by_atom_.begin() + cones_by_atom_start_[a],
+               cones_by_atom_.begin() + cones_by_atom_start_[a + 1]);
+  std::sort(out.begin() + static_cast<long>(start), out.end());
+  out.erase(std::unique(out.begin() + static_cast<long>(start), out.end()), out.end());
 }
 
 }  // namespace mg

@@ -26,6 +26,7 @@ struct RefineStats {
   std::size_t fallback_missed = 0;          ///< the ray met no primitive
   std::size_t fallback_too_far = 0;         ///< the ray reached G beyond max_travel
   std::size_t collapsed_digons = 0;         ///< valence-2 M1 vertices (dual 2-gons) dropped
+  std::size_t centroid_fans = 0;  ///< dual faces fanned from an added centre (see triangulate)
   /// Defects found right after each migration pass (the first, then one per subdivision
   /// round), summed; and what is left at the end.
   std::size_t intersecting_before = 0, degenerate_before = 0;

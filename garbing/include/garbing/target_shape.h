@@ -85,7 +85,8 @@ class TargetShape {
   /// Whether p lies in the union (closed primitives).
   bool contains(const Eigen::Vector3d& p) const;
 
-  /// Whether p lies strictly deeper than `eps` inside primitive i (model units).
+  /// Whether p lies strictly deeper than `eps` inside primitive i (model units; a negative eps
+  /// grows the primitive).
   bool primitive_contains(PrimitiveId i, const Eigen::Vector3d& p, double eps = 0) const;
 
   /// From a point outside the union: the smallest t in [0, t_max] at which the ray
@@ -98,6 +99,18 @@ class TargetShape {
   /// ray that contains t = 0 (where the ray leaves the union). False if it lies beyond t_max.
   bool run_end(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max,
                double& t) const;
+
+  /// Where the line v + t dir meets G next to v, in one pass over the primitives crossed by
+  /// t in [-t_max, t_max]: if v is outside the union, the first entry at t > 0 (`inside` =
+  /// false); if inside, where the line leaves the union toward negative t, returned as a
+  /// negative t (`inside` = true). False if that point lies beyond t_max from v.
+  bool line_to_boundary(const Eigen::Vector3d& v, const Eigen::Vector3d& dir, double t_max,
+                        double& t, bool& inside) const;
+
+  /// Parameter interval [t0, t1] of the line origin + t dir inside primitive i; false if the
+  /// line misses it.
+  bool ray_interval(PrimitiveId i, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                    double& t0, double& t1) const;
 
   /// A closest point of G to p. Exact when p is outside the union. Inside, the nearest of the
   /// exposed (on no other primitive's inside) candidates: each nearby primitive's nearest
@@ -116,19 +129,20 @@ class TargetShape {
   /// back). Sample k depends only on (seed, k): reproducible at any thread count.
   std::vector<Eigen::Vector3d> sample_boundary(std::size_t count, std::uint64_t seed) const;
 
-  /// Primitives whose solid meets the axis-aligned box [lo, hi] (exact for spheres; for cones,
-  /// the convex hull of the two balls is tested), appended in increasing id order.
+  /// Primitives whose solid meets the axis-aligned box [lo, hi] (exact for spheres; for a cone,
+  /// its frustum's bounding box must overlap and the convex hull of its two balls meet the
+  /// box), appended in increasing id order.
   void primitives_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                               std::vector<PrimitiveId>& out) const;
 
-  /// The cones among primitives meeting the box (ids), appended in increasing id order.
-  void cones_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
-                         std::vector<PrimitiveId>& out) const;
+  /// The cones with an end atom among `atoms` (ids, appended sorted, without repeats).
+  void cones_of_atoms(const std::vector<int>& atoms, std::vector<PrimitiveId>& out) const;
 
  private:
   struct Bvh;
   std::vector<MedialAtom> spheres_;
   std::vector<Cone> cones_;
+  std::vector<int> cones_by_atom_start_, cones_by_atom_;  // CSR: atom -> its cones' ids
   std::unique_ptr<Bvh> bvh_;
 };
 
