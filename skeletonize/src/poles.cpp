@@ -1,5 +1,5 @@
 // Inner Voronoi poles of a closed mesh: the CGAL translation unit of mg::skeletonize for the
-// Delaunay triangulation, inside tests and distances.
+// Delaunay triangulation, circumcentres, inside tests and distances.
 #include "skeletonize/poles.h"
 
 #include "garbing/errors.h"
@@ -10,32 +10,37 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Delaunay_triangulation_cell_base_3.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Interval_nt.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/constructions/kernel_ftC3.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <map>
+#include <numeric>
 #include <unordered_map>
 
 namespace mg::skeletonize {
 namespace {
 
 using K = CGAL::Epick;
-using EK = CGAL::Epeck;
 using Point = K::Point_3;
 using Vec3 = Eigen::Vector3d;
+// The Delaunay triangulation is built sequentially: CGAL's parallel insertion (Parallel_tag and
+// its lock grid) measured 1.5-2x slower at 1 thread and 4-6x slower at 2 threads as soon as the
+// 2 cores are shared (100k samples: 3.0-4.3 s against 0.6-0.7 s). Everything after it runs in
+// parallel. With CGAL's symbolic perturbation the triangulation does not depend on the insertion
+// order (which CGAL's spatial sort randomises), and nothing below depends on how it stores its
+// cells: results are the same at any thread count.
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
-using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
+using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb>>;
 using SurfaceMesh = CGAL::Surface_mesh<Point>;
 using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
@@ -46,7 +51,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 Point to_point(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
 
 /// splitmix64: sample k of the random stream depends only on (seed, k).
@@ -60,6 +64,18 @@ double uniform(std::uint64_t seed, std::uint64_t k) {
 
 void check_mesh(const PolygonSoup& mesh, const std::string& name) {
   if (mesh.faces.empty()) throw InvalidInput(name + ": empty mesh (no faces)");
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (!mesh.points[i].allFinite())
+      throw InvalidInput(name + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+  const int n = static_cast<int>(mesh.points.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (mesh.faces[f].size() < 3)
+      throw InvalidInput(name + ": face " + std::to_string(f) + " has fewer than 3 vertices");
+    for (int v : mesh.faces[f])
+      if (v < 0 || v >= n)
+        throw InvalidInput(name + ": face " + std::to_string(f) + ": vertex index " +
+                           std::to_string(v) + " out of range");
+  }
   const MeshTopology t = mesh_topology(mesh);
   if (!t.manifold) throw InvalidInput(name + ": non-manifold mesh: " + t.first_problem);
   if (!t.closed)
@@ -89,7 +105,8 @@ std::vector<Vec3> make_samples(const PolygonSoup& mesh, const SkeletonOptions& o
   if (opt.edge_midpoints) {
     std::vector<std::pair<int, int>> edges;
     for (const auto& f : mesh.faces)
-      for (std::size_t i = 0; i < f.size(); ++i) edges.push_back(std::minmax(f[i], f[(i + 1) % f.size()]));
+      for (std::size_t i = 0; i < f.size(); ++i)
+        edges.push_back(std::minmax(f[i], f[(i + 1) % f.size()]));
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     for (const auto& [a, b] : edges) samples.push_back((mesh.points[a] + mesh.points[b]) / 2);
@@ -101,13 +118,17 @@ std::vector<Vec3> make_samples(const PolygonSoup& mesh, const SkeletonOptions& o
     for (const auto& f : mesh.faces)
       for (std::size_t i = 1; i + 1 < f.size(); ++i) {
         tris.push_back({f[0], f[i], f[i + 1]});
-        total += (mesh.points[f[i]] - mesh.points[f[0]]).cross(mesh.points[f[i + 1]] - mesh.points[f[0]]).norm() / 2;
+        total += (mesh.points[f[i]] - mesh.points[f[0]])
+                     .cross(mesh.points[f[i + 1]] - mesh.points[f[0]])
+                     .norm() /
+                 2;
         cumulative.push_back(total);
       }
     for (std::size_t k = 0; k < opt.random_samples; ++k) {
       const double pick = uniform(opt.seed, 3 * k) * total;
       const std::size_t t = std::min<std::size_t>(
-          std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(), tris.size() - 1);
+          std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(),
+          tris.size() - 1);
       double u = uniform(opt.seed, 3 * k + 1), v = uniform(opt.seed, 3 * k + 2);
       if (u + v > 1) {
         u = 1 - u;
@@ -120,23 +141,43 @@ std::vector<Vec3> make_samples(const PolygonSoup& mesh, const SkeletonOptions& o
   return samples;
 }
 
-/// Circumcentre of a cell: the inexact construction when it passes a residual check (equal
-/// distances to the four corners, relative 1e-10), else the exact one. False when not even the
-/// exact one is a finite double (a numerical rejection; geometry never rejects a cell).
-bool circumcentre(const Point& p, const Point& q, const Point& r, const Point& s, Vec3& out, bool& exact) {
-  exact = false;
-  const Point c = CGAL::circumcenter(p, q, r, s);
-  const double d0 = CGAL::squared_distance(c, p);
-  const double tol = 1e-10 * d0;
-  if (std::isfinite(d0) && std::abs(CGAL::squared_distance(c, q) - d0) <= tol &&
-      std::abs(CGAL::squared_distance(c, r) - d0) <= tol && std::abs(CGAL::squared_distance(c, s) - d0) <= tol) {
-    out = to_vec(c);
-    return true;
+/// Circumcentre of the cell (p[0], p[1], p[2], p[3]) in interval arithmetic (a guaranteed
+/// enclosure, unlike a residual check: a wrong centre on the axis of 4 nearly cocircular points
+/// passes equal-distance checks). False when the interval is wider than 1e-10 of the centre's
+/// offset from p[0] or of the cell's size: the caller then computes it exactly.
+/// @pre FPU rounding upward (CGAL::Protect_FPU_rounding<true>)
+bool interval_circumcentre(const std::array<Vec3, 4>& p, Vec3& out) {
+  using I = CGAL::Interval_nt<false>;
+  I nx, ny, nz, den;
+  CGAL::determinants_for_circumcenterC3(
+      I(p[0].x()), I(p[0].y()), I(p[0].z()), I(p[1].x()), I(p[1].y()), I(p[1].z()), I(p[2].x()),
+      I(p[2].y()), I(p[2].z()), I(p[3].x()), I(p[3].y()), I(p[3].z()), nx, ny, nz, den);
+  if (!(den.inf() > 0 || den.sup() < 0)) return false;
+  const I inv = I(1) / (I(2) * den);
+  const I off[3] = {nx * inv, -(ny * inv), nz * inv};
+  double width = 0, size = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(off[k].inf()) || !std::isfinite(off[k].sup())) return false;
+    width = std::max(width, off[k].sup() - off[k].inf());
+    size = std::max(size, std::abs(CGAL::to_double(off[k])));
+    for (int j = 1; j < 4; ++j) size = std::max(size, std::abs(p[j][k] - p[0][k]));
   }
-  exact = true;
-  const CGAL::Cartesian_converter<K, EK> to_exact;
-  const EK::Point_3 e = CGAL::circumcenter(to_exact(p), to_exact(q), to_exact(r), to_exact(s));
-  out = Vec3(CGAL::to_double(e.x()), CGAL::to_double(e.y()), CGAL::to_double(e.z()));
+  if (!(width <= 1e-10 * size)) return false;
+  out = p[0] + Vec3(CGAL::to_double(off[0]), CGAL::to_double(off[1]), CGAL::to_double(off[2]));
+  return true;
+}
+
+/// The exact circumcentre, rounded to doubles. False when it is not a finite double.
+bool exact_circumcentre(const std::array<Vec3, 4>& p, Vec3& out) {
+  using Q = CGAL::Exact_rational;
+  Q nx, ny, nz, den;
+  CGAL::determinants_for_circumcenterC3(
+      Q(p[0].x()), Q(p[0].y()), Q(p[0].z()), Q(p[1].x()), Q(p[1].y()), Q(p[1].z()), Q(p[2].x()),
+      Q(p[2].y()), Q(p[2].z()), Q(p[3].x()), Q(p[3].y()), Q(p[3].z()), nx, ny, nz, den);
+  if (CGAL::is_zero(den)) return false;  // cannot happen for a Delaunay cell (exact orientation)
+  const Q inv = Q(1) / (Q(2) * den);
+  out = Vec3(CGAL::to_double(Q(p[0].x()) + nx * inv), CGAL::to_double(Q(p[0].y()) - ny * inv),
+             CGAL::to_double(Q(p[0].z()) + nz * inv));
   return out.allFinite();
 }
 
@@ -155,10 +196,114 @@ GridKey grid_key(const Vec3& p, double h) {
           static_cast<long>(std::floor(p.z() / h))};
 }
 
-/// Clamped balls under this fraction of the diagonal that meet no other ball are dropped
-/// (measured: clamped pole sets of hand and anchor_dense leave isolated balls of 1e-3 to 3e-3 of
-/// the diagonal, each a spurious component).
-constexpr double kIsolatedBall = 1e-2;
+/// Static bounding-volume hierarchy over balls (median splits of centres and radii; each node
+/// keeps the box of its centres, its largest radius and a sphere enclosing its balls).
+class BallTree {
+ public:
+  explicit BallTree(const std::vector<MedialAtom>& balls) : balls_(balls), index_(balls.size()) {
+    std::iota(index_.begin(), index_.end(), 0);
+    if (!balls.empty()) build(0, static_cast<int>(balls.size()));
+  }
+
+  /// Calls visit(j), in a fixed order, for every ball j that meets the ball (c, r), until visit
+  /// returns true. Returns whether it did.
+  template <class Visit>
+  bool find_meeting(const Vec3& c, double r, Visit&& visit) const {
+    return search(
+        [&](const Node& n) {
+          const double reach = n.max_radius + r;
+          return n.box.squaredExteriorDistance(c) <= reach * reach;
+        },
+        [&](int j) {
+          const double reach = balls_[j].radius + r;
+          return (balls_[j].centre - c).squaredNorm() <= reach * reach;
+        },
+        visit);
+  }
+
+  /// The same for every ball j that contains the ball (c, r) up to `slack`:
+  /// |c - c_j| + r <= r_j + slack.
+  template <class Visit>
+  bool find_containing(const Vec3& c, double r, double slack, Visit&& visit) const {
+    return search(
+        [&](const Node& n) {
+          const double reach = n.max_radius - r + slack, room = n.sphere_radius + slack - r;
+          return reach >= 0 && room >= 0 && n.box.squaredExteriorDistance(c) <= reach * reach &&
+                 (c - n.sphere_centre).squaredNorm() <= room * room;
+        },
+        [&](int j) { return (balls_[j].centre - c).norm() + r <= balls_[j].radius + slack; },
+        visit);
+  }
+
+ private:
+  struct Node {
+    Eigen::AlignedBox3d box;
+    double max_radius = 0;
+    Vec3 sphere_centre = Vec3::Zero();
+    double sphere_radius = 0;
+    int begin = 0, end = 0, left = -1, right = -1;
+  };
+
+  template <class NodeTest, class BallTest, class Visit>
+  bool search(NodeTest&& node_may_hold, BallTest&& ball_matches, Visit&& visit) const {
+    if (nodes_.empty()) return false;
+    int stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (!node_may_hold(n)) continue;
+      if (n.left < 0) {
+        for (int k = n.begin; k < n.end; ++k)
+          if (ball_matches(index_[k]) && visit(index_[k])) return true;
+      } else {
+        stack[top++] = n.right;
+        stack[top++] = n.left;
+      }
+    }
+    return false;
+  }
+
+  int build(int begin, int end) {
+    const int id = static_cast<int>(nodes_.size());
+    nodes_.emplace_back();
+    Node n;
+    n.begin = begin;
+    n.end = end;
+    for (int k = begin; k < end; ++k) {
+      n.box.extend(balls_[index_[k]].centre);
+      n.max_radius = std::max(n.max_radius, balls_[index_[k]].radius);
+    }
+    n.sphere_centre = n.box.center();
+    for (int k = begin; k < end; ++k) {
+      const MedialAtom& b = balls_[index_[k]];
+      n.sphere_radius = std::max(n.sphere_radius, (b.centre - n.sphere_centre).norm() + b.radius);
+    }
+    n.sphere_radius *= 1 + 1e-12;  // the rounding of the norms above
+    if (end - begin > 8) {
+      // Split the longest of the four extents (x, y, z, radius): nodes of similar radii keep
+      // the containment bound max_radius - r tight.
+      double min_radius = INFINITY;
+      for (int k = begin; k < end; ++k) min_radius = std::min(min_radius, balls_[index_[k]].radius);
+      int axis = 0;
+      const double extent = n.box.sizes().maxCoeff(&axis);
+      if (n.max_radius - min_radius > extent) axis = 3;
+      auto key = [&](int a) { return axis < 3 ? balls_[a].centre[axis] : balls_[a].radius; };
+      const int mid = (begin + end) / 2;
+      std::nth_element(
+          index_.begin() + begin, index_.begin() + mid, index_.begin() + end,
+          [&](int a, int b) { return key(a) < key(b) || (key(a) == key(b) && a < b); });
+      n.left = build(begin, mid);
+      n.right = build(mid, end);
+    }
+    nodes_[id] = n;
+    return id;
+  }
+
+  const std::vector<MedialAtom>& balls_;
+  std::vector<int> index_;
+  std::vector<Node> nodes_;
+};
 
 }  // namespace
 
@@ -170,7 +315,9 @@ struct SolidQuery::Impl {
 
 SolidQuery::SolidQuery(const PolygonSoup& mesh) : impl_(std::make_unique<Impl>()) {
   impl_->surface = triangle_mesh(mesh);
-  impl_->tree = std::make_unique<Tree>(faces(impl_->surface).first, faces(impl_->surface).second, impl_->surface);
+  impl_->tree = std::make_unique<Tree>(faces(impl_->surface).first, faces(impl_->surface).second,
+                                       impl_->surface);
+  impl_->tree->build();
   impl_->tree->accelerate_distance_queries();
   impl_->inside = std::make_unique<Inside>(*impl_->tree);
 }
@@ -185,6 +332,20 @@ double SolidQuery::distance(const Vec3& p) const {
   return std::sqrt(impl_->tree->squared_distance(to_point(p)));
 }
 
+double SolidQuery::distance(const Vec3& p, const Vec3& hint) const {
+  return std::sqrt(impl_->tree->squared_distance(to_point(p), to_point(hint)));
+}
+
+bool SolidQuery::segment_inside(const Vec3& a, const Vec3& b) const {
+  return !impl_->tree->do_intersect(K::Segment_3(to_point(a), to_point(b))) &&
+         contains((a + b) / 2);
+}
+
+bool SolidQuery::triangle_inside(const Vec3& a, const Vec3& b, const Vec3& c) const {
+  return !impl_->tree->do_intersect(K::Triangle_3(to_point(a), to_point(b), to_point(c))) &&
+         contains((a + b + c) / 3);
+}
+
 namespace {
 
 class Skeletonizer {
@@ -193,234 +354,331 @@ class Skeletonizer {
       : mesh_(mesh), opt_(opt), name_(name) {}
 
   Skeleton run() {
+    auto t = Clock::now();
     check_mesh(mesh_, name_);
+    if (!std::isfinite(opt_.merge_tol)) throw InvalidInput("merge tolerance must be finite");
+    if (!(opt_.isolated_fraction >= 0 && std::isfinite(opt_.isolated_fraction)))
+      throw InvalidInput("isolated-ball fraction must be finite and >= 0");
     out_.stats.diagonal = bbox_diagonal(mesh_.points);
     tol_ = opt_.merge_tol >= 0 ? opt_.merge_tol : 1e-3 * out_.stats.diagonal;
     out_.stats.merge_tol = tol_;
     out_.samples = make_samples(mesh_, opt_);
     out_.stats.samples = out_.samples.size();
-
+    deduplicate();
     solid_ = std::make_unique<SolidQuery>(mesh_);
+    out_.stats.seconds_setup = seconds_since(t);
 
-    const auto t0 = Clock::now();
+    t = Clock::now();
     triangulate();
-    out_.stats.seconds_delaunay = seconds_since(t0);
-    const auto t1 = Clock::now();
+    out_.stats.seconds_delaunay = seconds_since(t);
+    t = Clock::now();
     find_poles();
-    out_.stats.seconds_poles = seconds_since(t1);
-    const auto t2 = Clock::now();
+    out_.stats.seconds_poles = seconds_since(t);
+    t = Clock::now();
     merge_poles();
     prune_contained();
-    out_.stats.seconds_merge = seconds_since(t2);
-    const auto t3 = Clock::now();
-    if (opt_.clamp_radius) clamp();
-    measure_overshoot();
-    out_.stats.seconds_clamp = seconds_since(t3);
-    const auto t4 = Clock::now();
+    out_.stats.seconds_merge = seconds_since(t);
+    t = Clock::now();
+    distances_and_clamping();
+    out_.stats.seconds_distances = seconds_since(t);
+    t = Clock::now();
     if (opt_.connectivity) add_connectivity();
-    out_.stats.seconds_connectivity = seconds_since(t4);
+    out_.stats.seconds_connectivity = seconds_since(t);
     finish();
     return std::move(out_);
   }
 
  private:
-  bool inside(const Vec3& p) const { return solid_->contains(p); }
-  double distance_to_mesh(const Vec3& p) const { return solid_->distance(p); }
+  /// Distinct sample positions in lexicographic order (the triangulation keeps one vertex per
+  /// position; a canonical order keeps everything after it independent of insertion order).
+  void deduplicate() {
+    const auto& s = out_.samples;
+    std::vector<int> order(s.size());
+    std::iota(order.begin(), order.end(), 0);
+    auto less = [&](int a, int b) {
+      return std::lexicographical_compare(s[a].data(), s[a].data() + 3, s[b].data(),
+                                          s[b].data() + 3);
+    };
+    std::stable_sort(order.begin(), order.end(), less);
+    unique_of_sample_.assign(s.size(), -1);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      if (k == 0 || less(order[k - 1], order[k])) points_.push_back(s[order[k]]);
+      unique_of_sample_[order[k]] = static_cast<int>(points_.size()) - 1;
+    }
+    out_.stats.duplicate_samples = s.size() - points_.size();
+  }
 
   void triangulate() {
-    std::vector<std::pair<Point, int>> points;
-    points.reserve(out_.samples.size());
-    for (std::size_t i = 0; i < out_.samples.size(); ++i)
-      points.emplace_back(to_point(out_.samples[i]), static_cast<int>(i));
-    dt_.insert(points.begin(), points.end());
-    if (dt_.dimension() < 3)
+    Delaunay dt;
+    {
+      std::vector<std::pair<Point, int>> input;
+      input.reserve(points_.size());
+      for (std::size_t i = 0; i < points_.size(); ++i)
+        input.emplace_back(to_point(points_[i]), static_cast<int>(i));
+      dt.insert(input.begin(), input.end());
+    }
+    if (dt.dimension() < 3)
       throw InvalidInput(name_ + ": fewer than 4 non-coplanar samples: no Delaunay cell");
-    out_.stats.duplicate_samples = out_.samples.size() - dt_.number_of_vertices();
-    // Cells numbered in iteration order; each sample lists its incident finite cells.
-    incident_.assign(out_.samples.size(), {});
-    for (auto c = dt_.finite_cells_begin(); c != dt_.finite_cells_end(); ++c) {
-      c->info() = static_cast<int>(cells_.size());
-      cells_.push_back(c);
-      for (int k = 0; k < 4; ++k) incident_[c->vertex(k)->info()].push_back(c->info());
+
+    // Cells as sorted sample quadruples (in the triangulation's storage order, which may vary:
+    // nothing below depends on it).
+    cells_.reserve(dt.number_of_finite_cells());
+    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+      std::array<int, 4> v;
+      for (int k = 0; k < 4; ++k) v[k] = c->vertex(k)->info();
+      std::sort(v.begin(), v.end());
+      cells_.push_back(v);
     }
     out_.stats.cells = cells_.size();
-    hull_.assign(out_.samples.size(), 0);
-    for (auto c = dt_.all_cells_begin(); c != dt_.all_cells_end(); ++c)
-      if (dt_.is_infinite(c))
-        for (int k = 0; k < 4; ++k)
-          if (!dt_.is_infinite(c->vertex(k))) hull_[c->vertex(k)->info()] = 1;
-    out_.stats.hull_samples = static_cast<std::size_t>(std::count(hull_.begin(), hull_.end(), 1));
+
+    std::vector<Delaunay::Vertex_handle> hull;
+    dt.adjacent_vertices(dt.infinite_vertex(), std::back_inserter(hull));
+    out_.stats.hull_samples = hull.size();
+
+    // Incident cells of each sample, in cell order (compressed rows).
+    first_cell_.assign(points_.size() + 1, 0);
+    for (const auto& c : cells_)
+      for (int v : c) ++first_cell_[v + 1];
+    std::partial_sum(first_cell_.begin(), first_cell_.end(), first_cell_.begin());
+    incident_.resize(4 * cells_.size());
+    std::vector<int> next(first_cell_.begin(), first_cell_.end() - 1);
+    for (std::size_t c = 0; c < cells_.size(); ++c)
+      for (int v : cells_[c]) incident_[next[v]++] = static_cast<int>(c);
+
     centre_.resize(cells_.size());
     valid_.assign(cells_.size(), 0);
     std::vector<char> exact(cells_.size(), 0);
-    tbb::parallel_for(std::size_t(0), cells_.size(), [&](std::size_t i) {
-      const auto& c = cells_[i];
-      bool used_exact = false;
-      valid_[i] = circumcentre(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
-                               c->vertex(3)->point(), centre_[i], used_exact);
-      exact[i] = used_exact;
-    });
-    out_.stats.exact_circumcentres = static_cast<std::size_t>(std::count(exact.begin(), exact.end(), 1));
-    out_.stats.rejected_cells = static_cast<std::size_t>(std::count(valid_.begin(), valid_.end(), 0));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells_.size(), 2048),
+                      [&](const auto& range) {
+                        std::vector<std::size_t> hard;
+                        {
+                          CGAL::Protect_FPU_rounding<true> upward;
+                          for (std::size_t i = range.begin(); i != range.end(); ++i)
+                            if (interval_circumcentre(corners(i), centre_[i]))
+                              valid_[i] = 1;
+                            else
+                              hard.push_back(i);
+                        }
+                        for (std::size_t i : hard) {
+                          exact[i] = 1;
+                          valid_[i] = exact_circumcentre(corners(i), centre_[i]);
+                        }
+                      });
+    out_.stats.exact_circumcentres =
+        static_cast<std::size_t>(std::count(exact.begin(), exact.end(), 1));
+    out_.stats.rejected_cells =
+        static_cast<std::size_t>(std::count(valid_.begin(), valid_.end(), 0));
   }
 
-  /// Per sample: its incident cells' circumcentres from the farthest; the first inside the
-  /// object is the inner pole. Inside tests are memoised per cell (atomic, thread-safe).
+  std::array<Vec3, 4> corners(std::size_t cell) const {
+    const auto& c = cells_[cell];
+    return {points_[c[0]], points_[c[1]], points_[c[2]], points_[c[3]]};
+  }
+
+  /// Per sample: its incident cells' circumcentres from the farthest (ties: lexicographic on the
+  /// centre, so the cells' storage order never matters); the first inside the object is the
+  /// inner pole. Inside tests are memoised per cell.
   void find_poles() {
-    const std::size_t n = out_.samples.size();
+    const std::size_t n = points_.size();
     std::vector<std::atomic<signed char>> state(cells_.size());
     for (auto& s : state) s.store(-1, std::memory_order_relaxed);
-    pole_.assign(n, Vec3::Zero());
     pole_radius_.assign(n, -1);
+    pole_cell_.assign(n, -1);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
       std::vector<std::pair<double, int>> order;
-      for (int c : incident_[i])
-        if (valid_[c]) order.push_back({-(centre_[c] - out_.samples[i]).squaredNorm(), c});
-      std::sort(order.begin(), order.end());
-      for (const auto& [neg_d2, c] : order) {
+      for (int k = first_cell_[i]; k < first_cell_[i + 1]; ++k) {
+        const int c = incident_[k];
+        if (valid_[c]) order.push_back({(centre_[c] - points_[i]).squaredNorm(), c});
+      }
+      std::sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+        if (a.first != b.first) return a.first > b.first;
+        const Vec3 &ca = centre_[a.second], &cb = centre_[b.second];
+        return std::lexicographical_compare(ca.data(), ca.data() + 3, cb.data(), cb.data() + 3);
+      });
+      for (const auto& [d2, c] : order) {
         signed char s = state[c].load(std::memory_order_relaxed);
         if (s < 0) {
-          s = inside(centre_[c]) ? 1 : 0;
+          s = solid_->contains(centre_[c]) ? 1 : 0;
           state[c].store(s, std::memory_order_relaxed);
         }
         if (s == 1) {
-          pole_[i] = centre_[c];
-          pole_radius_[i] = std::sqrt(-neg_d2);
+          pole_cell_[i] = c;
+          pole_radius_[i] = std::sqrt(d2);
           return;
         }
       }
     });
     for (std::size_t i = 0; i < n; ++i) {
-      if (pole_radius_[i] > 0)
+      if (pole_cell_[i] >= 0)
         ++out_.stats.poles;
-      else if (!incident_[i].empty())
+      else
         ++out_.stats.skipped_samples;
     }
   }
 
-  /// Greedy clusters, largest radius first: a pole within tol / 2 of a representative joins
-  /// it. The representative's ball is an empty circumsphere, so every sample of the cluster
+  /// Greedy clusters, largest radius first: a pole within tol / 2 of an atom's centre joins it.
+  /// The atom's ball is an empty circumsphere at least as large, so every sample of the cluster
   /// lies within tol / 2 of its surface.
   void merge_poles() {
     std::vector<int> order;
-    for (std::size_t i = 0; i < pole_.size(); ++i)
-      if (pole_radius_[i] > 0) order.push_back(static_cast<int>(i));
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return pole_radius_[a] > pole_radius_[b] || (pole_radius_[a] == pole_radius_[b] && a < b);
-    });
-    const double h = std::max(tol_ / 2, 1e-300);
-    std::unordered_map<GridKey, std::vector<int>, GridHash> reps;  // lookups only
-    out_.atom_of_sample.assign(out_.samples.size(), -1);
+    for (std::size_t i = 0; i < points_.size(); ++i)
+      if (pole_cell_[i] >= 0) order.push_back(static_cast<int>(i));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return pole_radius_[a] > pole_radius_[b]; });
+    // Grid of side h >= tol: the poles within tol / 2 of a point lie in the 2 x 2 x 2 cells
+    // nearest to it. (tol = 0 merges equal poles only.)
+    const double h = std::max(tol_, 1e-12 * out_.stats.diagonal);
+    std::unordered_map<GridKey, std::vector<int>, GridHash> atoms_near;  // lookups only
+    atom_of_point_.assign(points_.size(), -1);
     for (int i : order) {
-      const GridKey g = grid_key(pole_[i], h);
+      const Vec3& pole = centre_[pole_cell_[i]];
+      const GridKey g = grid_key(pole, h);
+      const Vec3 frac = pole / h - Vec3(g.x, g.y, g.z);
+      const long sx = frac.x() < 0.5 ? -1 : 1, sy = frac.y() < 0.5 ? -1 : 1,
+                 sz = frac.z() < 0.5 ? -1 : 1;
       int found = -1;
-      for (long dx = -1; dx <= 1 && found < 0; ++dx)
-        for (long dy = -1; dy <= 1 && found < 0; ++dy)
-          for (long dz = -1; dz <= 1 && found < 0; ++dz) {
-            const auto it = reps.find({g.x + dx, g.y + dy, g.z + dz});
-            if (it == reps.end()) continue;
-            for (int a : it->second)
-              if ((out_.atoms.atoms[a].centre - pole_[i]).norm() <= tol_ / 2) {
-                found = a;
-                break;
-              }
+      for (int k = 0; k < 8 && found < 0; ++k) {
+        const auto it =
+            atoms_near.find({g.x + (k & 1) * sx, g.y + (k >> 1 & 1) * sy, g.z + (k >> 2 & 1) * sz});
+        if (it == atoms_near.end()) continue;
+        for (int a : it->second)
+          if ((out_.atoms.atoms[a].centre - pole).norm() <= tol_ / 2) {
+            found = a;
+            break;
           }
+      }
       if (found < 0) {
         found = static_cast<int>(out_.atoms.atoms.size());
-        out_.atoms.atoms.push_back({pole_[i], pole_radius_[i]});
-        reps[g].push_back(found);
+        out_.atoms.atoms.push_back({pole, pole_radius_[i]});
+        founder_.push_back(i);
+        atoms_near[g].push_back(found);
       } else {
         ++out_.stats.merged;
       }
-      out_.atom_of_sample[i] = found;
+      atom_of_point_[i] = found;
     }
   }
 
   /// Drops every ball inside a larger kept ball up to tol / 2: |ci - cj| + ri <= rj + tol / 2.
   /// With the merge's tol / 2, every sample then lies within tol of its atom's surface
-  /// (containers are kept balls, so there are no chains).
+  /// (containers are kept balls, so there are no chains). Atoms are in decreasing radius.
   void prune_contained() {
-    auto& atoms = out_.atoms.atoms;
-    const std::size_t n = atoms.size();
-    std::vector<int> order(n);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      return atoms[a].radius > atoms[b].radius || (atoms[a].radius == atoms[b].radius && a < b);
+    const auto& atoms = out_.atoms.atoms;
+    const BallTree tree(atoms);
+    auto contains = [&](std::size_t i, auto&& accept) {
+      int found = -1;
+      tree.find_containing(atoms[i].centre, atoms[i].radius, tol_ / 2, [&](int j) {
+        if (j >= static_cast<int>(i) || !accept(j)) return false;
+        found = j;
+        return true;
+      });
+      return found;
+    };
+    // In parallel: the balls inside no larger ball are kept whatever happens. Then, in order
+    // of decreasing radius, the others: dropped if a kept ball contains them.
+    std::vector<char> candidate(atoms.size(), 0);
+    tbb::parallel_for(std::size_t(0), atoms.size(), [&](std::size_t i) {
+      candidate[i] = contains(i, [](int) { return true; }) >= 0;
     });
-    // Kept balls bucketed by centre at the largest radius (a container's centre lies within
-    // r_j + tol of the contained one's centre); the scan stops at the first container.
-    const double h = std::max(atoms.empty() ? 1.0 : atoms[order[0]].radius + tol_, 1e-300);
-    std::unordered_map<GridKey, std::vector<int>, GridHash> kept;  // lookups only
-    std::vector<int> container(n, -1);
-    for (int i : order) {
-      const GridKey g = grid_key(atoms[i].centre, h);
-      for (long dx = -1; dx <= 1 && container[i] < 0; ++dx)
-        for (long dy = -1; dy <= 1 && container[i] < 0; ++dy)
-          for (long dz = -1; dz <= 1 && container[i] < 0; ++dz) {
-            const auto it = kept.find({g.x + dx, g.y + dy, g.z + dz});
-            if (it == kept.end()) continue;
-            for (int j : it->second)
-              if ((atoms[i].centre - atoms[j].centre).norm() + atoms[i].radius <= atoms[j].radius + tol_ / 2) {
-                container[i] = j;
-                break;
-              }
-          }
-      if (container[i] < 0) kept[g].push_back(i);
+    std::vector<char> kept(atoms.size(), 0);
+    std::vector<int> target(atoms.size(), -1);
+    for (std::size_t i = 0; i < atoms.size(); ++i) {
+      if (candidate[i]) target[i] = contains(i, [&](int j) { return kept[j] != 0; });
+      kept[i] = target[i] < 0;
     }
-    remap(container);
-    out_.stats.pruned += static_cast<std::size_t>(std::count_if(container.begin(), container.end(),
-                                                                [](int c) { return c >= 0; }));
+    out_.stats.pruned = static_cast<std::size_t>(std::count(kept.begin(), kept.end(), 0));
+    remap(target);
   }
 
-  /// Removes the atoms with target[i] >= 0 (-2: drop without a target), renumbering and
-  /// sending their samples to the target.
+  /// Removes the atoms with target[i] != -1 (-2: dropped without a target), renumbering the
+  /// rest and sending the removed atoms' samples to their target.
   void remap(const std::vector<int>& target) {
     auto& atoms = out_.atoms.atoms;
     std::vector<int> new_index(atoms.size(), -1);
     std::vector<MedialAtom> kept;
+    std::vector<int> kept_founder;
     for (std::size_t i = 0; i < atoms.size(); ++i)
       if (target[i] == -1) {
         new_index[i] = static_cast<int>(kept.size());
         kept.push_back(atoms[i]);
+        kept_founder.push_back(founder_[i]);
       }
-    for (int& a : out_.atom_of_sample) {
+    for (int& a : atom_of_point_) {
       if (a < 0) continue;
       int t = a;
-      while (t >= 0 && target[t] >= 0) t = target[t];
-      a = t >= 0 ? new_index[t] : -1;
-      if (t >= 0 && target[t] == -2) a = -1;
+      while (target[t] >= 0) t = target[t];
+      a = target[t] == -2 ? -1 : new_index[t];
     }
     atoms = std::move(kept);
+    founder_ = std::move(kept_founder);
   }
 
-  void clamp() {
+  /// Distances from the centres to the mesh (searches start at each atom's own sample):
+  /// overshoot before and after clamping, and the clamping itself.
+  void distances_and_clamping() {
     auto& atoms = out_.atoms.atoms;
+    std::vector<double> distance(atoms.size());
     tbb::parallel_for(std::size_t(0), atoms.size(), [&](std::size_t i) {
-      atoms[i].radius = std::min(atoms[i].radius, distance_to_mesh(atoms[i].centre));
+      distance[i] = solid_->distance(atoms[i].centre, points_[founder_[i]]);
     });
-    // Small balls that meet no other ball are spurious components of the union (poles of
-    // convex corners shrink away from the rest) and would drive the octree deep.
-    const double small = kIsolatedBall * out_.stats.diagonal;
-    std::vector<int> target(atoms.size(), -1);
-    for (std::size_t i = 0; i < atoms.size(); ++i) {
-      if (!(atoms[i].radius < small)) continue;
-      bool meets = false;
-      for (std::size_t j = 0; j < atoms.size() && !meets; ++j)
-        meets = j != i && (atoms[i].centre - atoms[j].centre).norm() <= atoms[i].radius + atoms[j].radius;
-      if ((!meets && atoms.size() > 1) || !(atoms[i].radius > 0)) target[i] = -2;
+    double worst = 0;
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+      worst = std::max(worst, atoms[i].radius - distance[i]);
+    out_.stats.pole_overshoot = worst;
+    if (opt_.clamp_radius) {
+      for (std::size_t i = 0; i < atoms.size(); ++i)
+        atoms[i].radius = std::min(atoms[i].radius, distance[i]);
+      const std::vector<int> target = small_groups();
+      out_.stats.dropped_small =
+          static_cast<std::size_t>(std::count(target.begin(), target.end(), -2));
+      std::vector<double> kept_distance;
+      for (std::size_t i = 0; i < atoms.size(); ++i)
+        if (target[i] == -1) kept_distance.push_back(distance[i]);
+      remap(target);
+      distance = std::move(kept_distance);
     }
-    out_.stats.dropped_small =
-        static_cast<std::size_t>(std::count(target.begin(), target.end(), -2));
-    remap(target);
+    worst = 0;
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+      worst = std::max(worst, atoms[i].radius - distance[i]);
+    out_.stats.worst_overshoot = worst;
   }
 
-  void measure_overshoot() {
+  /// Clamped balls can break away from the rest: the poles of convex corners shrink to the
+  /// local distance to the mesh and may then meet no other ball. Each group of clamped balls
+  /// that meet each other (a component of their union) whose largest ball is under
+  /// opt_.isolated_fraction of the diagonal is dropped, except the group of the largest ball;
+  /// so are balls clamped to radius 0. Returns the remap target (-2: dropped, -1: kept).
+  std::vector<int> small_groups() const {
     const auto& atoms = out_.atoms.atoms;
-    std::vector<double> over(atoms.size());
-    tbb::parallel_for(std::size_t(0), atoms.size(), [&](std::size_t i) {
-      over[i] = atoms[i].radius - distance_to_mesh(atoms[i].centre);
-    });
-    out_.stats.worst_overshoot = atoms.empty() ? 0 : std::max(0.0, *std::max_element(over.begin(), over.end()));
+    const double small = opt_.isolated_fraction * out_.stats.diagonal;
+    const BallTree tree(atoms);
+    std::vector<int> target(atoms.size(), -1);
+    const int largest = static_cast<int>(
+        std::max_element(atoms.begin(), atoms.end(),
+                         [](const auto& a, const auto& b) { return a.radius < b.radius; }) -
+        atoms.begin());
+    std::vector<char> seen(atoms.size(), 0);
+    for (std::size_t i = 0; i < atoms.size(); ++i) {
+      if (!(atoms[i].radius > 0)) target[i] = -2;
+      if (seen[i] || !(atoms[i].radius > 0 && atoms[i].radius < small)) continue;
+      // The group through small balls only; it stays if it reaches a larger ball.
+      std::vector<int> group = {static_cast<int>(i)};
+      seen[i] = 1;
+      bool anchored = false;
+      for (std::size_t k = 0; k < group.size() && !anchored; ++k)
+        anchored = tree.find_meeting(atoms[group[k]].centre, atoms[group[k]].radius, [&](int j) {
+          if (!(atoms[j].radius > 0)) return false;
+          if (!(atoms[j].radius < small)) return true;
+          if (!seen[j]) {
+            seen[j] = 1;
+            group.push_back(j);
+          }
+          return false;
+        });
+      if (anchored || std::find(group.begin(), group.end(), largest) != group.end()) continue;
+      for (int j : group) target[j] = -2;
+    }
+    return target;
   }
 
   void add_connectivity() {
@@ -429,11 +687,11 @@ class Skeletonizer {
     const auto& a = out_.atoms.atoms;
     std::vector<char> keep_edge(rs.edges.size()), keep_triangle(rs.triangles.size());
     tbb::parallel_for(std::size_t(0), rs.edges.size(), [&](std::size_t i) {
-      keep_edge[i] = inside((a[rs.edges[i][0]].centre + a[rs.edges[i][1]].centre) / 2);
+      keep_edge[i] = solid_->segment_inside(a[rs.edges[i][0]].centre, a[rs.edges[i][1]].centre);
     });
     tbb::parallel_for(std::size_t(0), rs.triangles.size(), [&](std::size_t i) {
       const auto& t = rs.triangles[i];
-      keep_triangle[i] = inside((a[t[0]].centre + a[t[1]].centre + a[t[2]].centre) / 3);
+      keep_triangle[i] = solid_->triangle_inside(a[t[0]].centre, a[t[1]].centre, a[t[2]].centre);
     });
     for (std::size_t i = 0; i < rs.edges.size(); ++i)
       if (keep_edge[i]) out_.atoms.edges.push_back(rs.edges[i]);
@@ -443,7 +701,10 @@ class Skeletonizer {
 
   void finish() {
     const auto& atoms = out_.atoms.atoms;
-    if (atoms.empty()) throw InvalidInput(name_ + ": no inner pole found (is the mesh oriented outward?)");
+    if (atoms.empty()) throw InvalidInput(name_ + ": no inner pole found");
+    out_.atom_of_sample.resize(out_.samples.size());
+    for (std::size_t s = 0; s < out_.samples.size(); ++s)
+      out_.atom_of_sample[s] = atom_of_point_[unique_of_sample_[s]];
     out_.stats.atoms = atoms.size();
     out_.stats.rmin = INFINITY;
     out_.stats.rmax = 0;
@@ -459,12 +720,16 @@ class Skeletonizer {
   double tol_ = 0;
   Skeleton out_;
   std::unique_ptr<SolidQuery> solid_;
-  Delaunay dt_;
-  std::vector<Delaunay::Cell_handle> cells_;
-  std::vector<std::vector<int>> incident_;
-  std::vector<char> hull_, valid_;
-  std::vector<Vec3> centre_, pole_;
-  std::vector<double> pole_radius_;
+  std::vector<Vec3> points_;               // distinct samples, lexicographic
+  std::vector<int> unique_of_sample_;      // sample -> points_ index
+  std::vector<std::array<int, 4>> cells_;  // finite Delaunay cells, canonical order
+  std::vector<int> first_cell_, incident_;
+  std::vector<char> valid_;
+  std::vector<Vec3> centre_;         // per cell
+  std::vector<double> pole_radius_;  // per point
+  std::vector<int> pole_cell_;       // per point; -1: no pole
+  std::vector<int> atom_of_point_;   // per point; -1: none
+  std::vector<int> founder_;         // per atom: the point whose pole it is
 };
 
 }  // namespace

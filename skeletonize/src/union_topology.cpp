@@ -26,7 +26,8 @@ using K = CGAL::Epick;
 
 // 3D: alpha complex at alpha = 0 over the regular triangulation, atom index as vertex info.
 using Vb3 = CGAL::Fixed_alpha_shape_vertex_base_3<
-    K, CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>>;
+    K, CGAL::Triangulation_vertex_base_with_info_3<int, K,
+                                                   CGAL::Regular_triangulation_vertex_base_3<K>>>;
 using Cb3 = CGAL::Fixed_alpha_shape_cell_base_3<K, CGAL::Regular_triangulation_cell_base_3<K>>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using Regular3 = CGAL::Regular_triangulation_3<K, Tds3>;
@@ -60,12 +61,13 @@ Regular3 regular_triangulation(const MedialSurface& atoms) {
   return Regular3(points.begin(), points.end());
 }
 
-/// Counts of the dual complex: vertices (kept atoms), edges, triangles, tetrahedra, and the
-/// components through its edges.
-/// CGAL classifies a vertex by its weight alone, so a ball covered by others (its ball misses
-/// its own power cell) shows up as an isolated singular vertex. A vertex without complex edges
-/// belongs to the dual complex only if its ball meets its power cell, which for an isolated
-/// vertex means its centre lies in its power cell (its own nearest power vertex): checked.
+/// Counts of the dual complex: vertices (atoms), edges, triangles, tetrahedra, and the
+/// components through its edges. A ball covered by the others can keep a power cell (far away)
+/// that its ball misses: it is in the triangulation but not in the dual complex, and must not
+/// count as a component. Fixed_alpha_shape_3 gets this right (its vertices must be Gabriel);
+/// Alpha_shape_2 does not (tested): in 2D an isolated vertex is kept only if its centre lies in
+/// its own power cell (it is its own nearest power vertex), which for a vertex without complex
+/// edges is the same as its ball meeting its cell.
 struct Complex {
   std::vector<int> vertices;
   std::vector<std::array<int, 2>> edges;
@@ -94,12 +96,8 @@ UnionTopology topology_3d(const MedialSurface& atoms, Regular3& rt) {
   for (auto e = alpha.finite_edges_begin(); e != alpha.finite_edges_end(); ++e)
     if (alpha.classify(*e) != Alpha3::EXTERIOR)
       c.edges.push_back({e->first->vertex(e->second)->info(), e->first->vertex(e->third)->info()});
-  std::vector<char> linked(atoms.atoms.size(), 0);
-  for (const auto& e : c.edges) linked[e[0]] = linked[e[1]] = 1;
   for (auto v = alpha.finite_vertices_begin(); v != alpha.finite_vertices_end(); ++v)
-    if (alpha.classify(v) != Alpha3::EXTERIOR &&
-        (linked[v->info()] || alpha.nearest_power_vertex(v->point().point()) == Alpha3::Vertex_handle(v)))
-      c.vertices.push_back(v->info());
+    if (alpha.classify(v) != Alpha3::EXTERIOR) c.vertices.push_back(v->info());
   for (auto f = alpha.finite_facets_begin(); f != alpha.finite_facets_end(); ++f)
     if (alpha.classify(*f) != Alpha3::EXTERIOR) ++c.triangles;
   for (auto k = alpha.finite_cells_begin(); k != alpha.finite_cells_end(); ++k)
@@ -133,8 +131,9 @@ UnionTopology topology_2d(const MedialSurface& atoms) {
   std::vector<std::pair<Regular2::Weighted_point, int>> points;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const Eigen::Vector3d d = a[i].centre - p0;
-    points.emplace_back(Regular2::Weighted_point(K::Point_2(d.dot(e1), d.dot(e2)), a[i].radius * a[i].radius),
-                        static_cast<int>(i));
+    points.emplace_back(
+        Regular2::Weighted_point(K::Point_2(d.dot(e1), d.dot(e2)), a[i].radius * a[i].radius),
+        static_cast<int>(i));
   }
   // Regular_triangulation_2 has no info vertex base here: map back by exact coordinates.
   Alpha2 alpha(0, Alpha2::GENERAL);
@@ -160,7 +159,8 @@ UnionTopology topology_2d(const MedialSurface& atoms) {
   for (const auto& e : c.edges) linked[e[0]] = linked[e[1]] = 1;
   for (auto v = alpha.finite_vertices_begin(); v != alpha.finite_vertices_end(); ++v)
     if (alpha.classify(v) != Alpha2::EXTERIOR &&
-        (linked[atom_of(v)] || alpha.nearest_power_vertex(v->point().point()) == Alpha2::Vertex_handle(v)))
+        (linked[atom_of(v)] ||
+         alpha.nearest_power_vertex(v->point().point()) == Alpha2::Vertex_handle(v)))
       c.vertices.push_back(atom_of(v));
   for (auto f = alpha.finite_faces_begin(); f != alpha.finite_faces_end(); ++f)
     if (alpha.classify(f) != Alpha2::EXTERIOR) ++c.triangles;
@@ -218,7 +218,8 @@ RegularSimplices regular_simplices(const MedialSurface& atoms) {
   RegularSimplices out;
   out.hidden_atoms = atoms.atoms.size() - rt.number_of_vertices();
   for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
-    std::array<int, 2> s = {e->first->vertex(e->second)->info(), e->first->vertex(e->third)->info()};
+    std::array<int, 2> s = {e->first->vertex(e->second)->info(),
+                            e->first->vertex(e->third)->info()};
     std::sort(s.begin(), s.end());
     out.edges.push_back(s);
   }

@@ -1,73 +1,56 @@
+// Inner poles on generated shapes: analytic atoms, options, determinism, refusals.
+#include "skeletonize/poles.h"
 #include "garbing/errors.h"
 #include "garbing/shapes.h"
-#include "skeletonize/poles.h"
 #include "skeletonize/union_topology.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace {
 
 using Eigen::Vector3d;
 namespace sk = mg::skeletonize;
 
-mg::MedialSurface balls(std::initializer_list<mg::MedialAtom> list) {
-  mg::MedialSurface s;
-  s.atoms = list;
-  return s;
+std::string ma_text(const mg::MedialSurface& s) {
+  std::ostringstream out;
+  mg::format_medial_surface(out, s);
+  return out.str();
 }
 
-TEST(UnionTopology, OneBallTwoBallsAndARing) {
-  const auto one = sk::union_topology(balls({{Vector3d(1, 2, 3), 0.5}}));
-  EXPECT_EQ(one.components, 1u);
-  EXPECT_EQ(one.euler, 2);
-  const auto two = sk::union_topology(balls({{Vector3d(0, 0, 0), 1}, {Vector3d(3, 0, 0), 1}}));
-  EXPECT_EQ(two.components, 2u);
-  EXPECT_EQ(two.euler, 4);
-  mg::MedialSurface ring;
-  for (int k = 0; k < 60; ++k) {
-    const double t = 2 * M_PI * k / 60;
-    ring.atoms.push_back({Vector3d(std::cos(t), std::sin(t), 0), 0.3});
+std::string refusal(const mg::PolygonSoup& m) {
+  try {
+    sk::skeletonize(m, {}, "m.off");
+  } catch (const mg::InvalidInput& e) {
+    return e.what();
   }
-  const auto torus = sk::union_topology(ring);  // coplanar centres: the planar complex
-  EXPECT_EQ(torus.components, 1u);
-  EXPECT_EQ(torus.euler, 0);
-  // The same ring, tilted out of any plane by a small wave: the 3D complex.
-  for (int k = 0; k < 60; ++k) ring.atoms[k].centre.z() = 0.05 * std::sin(3 * 2 * M_PI * k / 60);
-  EXPECT_EQ(sk::union_topology(ring).euler, 0);
-}
-
-TEST(UnionTopology, HiddenBallsAndHollowShells) {
-  // Balls inside another change nothing: a concentric one is hidden in the regular
-  // triangulation; off-centre ones keep (empty-looking) power cells far away and are isolated
-  // singular vertices of CGAL's alpha shape, which must not count as components.
-  const auto nested = sk::union_topology(balls({{Vector3d(0, 0, 0), 1}, {Vector3d(0.2, 0, 0), 0.3},
-                                                {Vector3d(0, 0.1, 0.1), 0.2}, {Vector3d(2, 2, 2), 0.1},
-                                                {Vector3d(0, 0, 0), 0.5}}));
-  EXPECT_EQ(nested.components, 2u);
-  EXPECT_EQ(nested.euler, 4);
-  EXPECT_GE(nested.hidden_atoms, 1u);
-  // A shell of balls around a void: boundary = two spheres, Euler characteristic 4.
-  mg::MedialSurface shell;
-  for (int i = 0; i < 12; ++i)
-    for (int j = 0; j < 24; ++j) {
-      const double th = M_PI * (i + 0.5) / 12, ph = 2 * M_PI * j / 24;
-      shell.atoms.push_back({Vector3d(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)), 0.25});
-    }
-  const auto hollow = sk::union_topology(shell);
-  EXPECT_EQ(hollow.components, 1u);
-  EXPECT_EQ(hollow.euler, 4);
+  return "(accepted)";
 }
 
 TEST(Skeletonize, SphereGivesOneAtomAtItsCentre) {
-  mg::PolygonSoup sphere = mg::make_geodesic_sphere(12, 2.0);
-  for (auto& p : sphere.points) p += Vector3d(0.3, -0.2, 1.0);
+  const double R = 2.0;
+  const Vector3d centre(0.3, -0.2, 1.0);
+  mg::PolygonSoup sphere = mg::make_geodesic_sphere(12, R);
+  for (auto& p : sphere.points) p += centre;
   const auto s = sk::skeletonize(sphere, {}, "sphere");
   ASSERT_EQ(s.atoms.atoms.size(), 1u);
-  EXPECT_LT((s.atoms.atoms[0].centre - Vector3d(0.3, -0.2, 1.0)).norm(), 1e-3 * 2.0);
-  EXPECT_NEAR(s.atoms.atoms[0].radius, 2.0, 2e-3);
+  EXPECT_LT((s.atoms.atoms[0].centre - centre).norm(), 1e-3 * R);
+  EXPECT_NEAR(s.atoms.atoms[0].radius, R, 1e-3 * R);
+  EXPECT_GT(s.stats.merged, 1000u);  // 1442 poles, all near the centre
+  EXPECT_EQ(s.stats.skipped_samples, 0u);
+  EXPECT_EQ(s.stats.hull_samples, s.stats.samples);  // every vertex of a convex mesh
+  // Clamped: the distance to the inscribed polyhedron, a little under R.
+  sk::SkeletonOptions clamp;
+  clamp.clamp_radius = true;
+  const auto c = sk::skeletonize(sphere, clamp, "sphere");
+  ASSERT_EQ(c.atoms.atoms.size(), 1u);
+  EXPECT_LT(c.atoms.atoms[0].radius, R);
+  EXPECT_GT(c.atoms.atoms[0].radius, 0.99 * R);
+  EXPECT_EQ(c.stats.worst_overshoot, 0.0);
+  EXPECT_GE(c.stats.pole_overshoot, 0.0);
 }
 
 TEST(Skeletonize, ExactTorusGivesSixtyAtomsOnTheCoreCircle) {
@@ -77,71 +60,148 @@ TEST(Skeletonize, ExactTorusGivesSixtyAtomsOnTheCoreCircle) {
     EXPECT_LT(std::hypot(std::hypot(a.centre.x(), a.centre.y()) - 1.0, a.centre.z()), 2e-3);
     EXPECT_NEAR(a.radius, 0.3, 0.02 * 0.3);
   }
-  EXPECT_GT(s.stats.exact_circumcentres, 0u);  // the regular grid needs the exact fallback
+  // Its grid puts 4 samples on one circle: those cells need the exact circumcentre.
+  EXPECT_GT(s.stats.exact_circumcentres, 0u);
+  EXPECT_EQ(s.stats.rejected_cells, 0u);
+  const auto t = sk::union_topology(s.atoms);
+  EXPECT_EQ(t.components, 1u);
+  EXPECT_EQ(t.euler, 0);
 }
 
-TEST(Skeletonize, RandomSamplesAndMidpointsAddToTheVertices) {
+TEST(Skeletonize, SamplesAreVerticesMidpointsAndSeededPointsOnTheFaces) {
   const auto torus = mg::make_torus(24, 8, 1.0, 0.3);
   sk::SkeletonOptions opt;
   opt.random_samples = 500;
-  EXPECT_EQ(sk::skeletonize(torus, opt, "t").stats.samples, 24u * 8 + 500);
+  const auto a = sk::skeletonize(torus, opt, "t");
+  EXPECT_EQ(a.stats.samples, 24u * 8 + 500);
+  const sk::SolidQuery solid(torus);
+  for (const auto& p : a.samples) EXPECT_LT(solid.distance(p), 1e-12);
+  opt.seed = 2;
+  const auto b = sk::skeletonize(torus, opt, "t");
+  EXPECT_NE(a.samples.back(), b.samples.back());  // another stream
+  opt.seed = 1;
+  EXPECT_EQ(sk::skeletonize(torus, opt, "t").samples, a.samples);  // the same stream
   opt = {};
   opt.edge_midpoints = true;
   EXPECT_EQ(sk::skeletonize(torus, opt, "t").stats.samples, 24u * 8 * 4);  // V + E = V + 3V
 }
 
-TEST(Skeletonize, ConnectivityKeepsInsideSimplices) {
+TEST(Skeletonize, MergeToleranceDecidesWhatIsOneAtom) {
+  const auto sphere = mg::make_geodesic_sphere(8, 1.0);
+  sk::SkeletonOptions opt;
+  opt.merge_tol = 0;  // only equal poles merge: the sphere's poles scatter around its centre
+  const auto s = sk::skeletonize(sphere, opt, "sphere");
+  EXPECT_GT(s.atoms.atoms.size(), 1u);
+  for (std::size_t i = 0; i < s.samples.size(); ++i)  // still on their (unmerged) poles' balls
+    EXPECT_NEAR((s.samples[i] - s.atoms.atoms[s.atom_of_sample[i]].centre).norm(),
+                s.atoms.atoms[s.atom_of_sample[i]].radius, 1e-9);
+  opt.merge_tol = 0.01;  // poles within 0.005 of each other
+  const auto m = sk::skeletonize(sphere, opt, "sphere");
+  EXPECT_EQ(m.stats.merge_tol, 0.01);
+  EXPECT_EQ(m.atoms.atoms.size(), 1u);
+}
+
+TEST(Skeletonize, SameFileAtOneAndTwoThreadsAndAnyVertexOrder) {
+  const auto bumpy = mg::make_bumpy_torus(40, 30, 1.0, 0.35, 0.1, 6, 3);
+  const auto torus = mg::make_torus(60, 20, 1.0, 0.3);
+  sk::SkeletonOptions random;
+  random.random_samples = 2000;
+  sk::SkeletonOptions full;
+  full.clamp_radius = full.connectivity = full.edge_midpoints = true;
+  for (const auto& [mesh, opt] : {std::pair{bumpy, random}, std::pair{torus, full}}) {
+    std::string one, two;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = ma_text(sk::skeletonize(mesh, opt, "m").atoms);
+    }
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+      two = ma_text(sk::skeletonize(mesh, opt, "m").atoms);
+    }
+    EXPECT_EQ(one, two);
+    // The same mesh with its vertices and faces in another order: the same file.
+    mg::PolygonSoup shuffled = mesh;
+    const int n = static_cast<int>(mesh.points.size());
+    auto moved = [n](int v) { return (v * 7919 + 13) % n; };  // a permutation (7919 is prime)
+    for (int v = 0; v < n; ++v) shuffled.points[moved(v)] = mesh.points[v];
+    for (auto& f : shuffled.faces)
+      for (int& v : f) v = moved(v);
+    std::reverse(shuffled.faces.begin(), shuffled.faces.end());
+    if (opt.random_samples == 0) {  // random points depend on the face order
+      EXPECT_EQ(ma_text(sk::skeletonize(shuffled, opt, "m").atoms), one);
+    }
+  }
+}
+
+TEST(Skeletonize, ConnectivityKeepsTheRegularSimplicesInsideTheObject) {
   sk::SkeletonOptions opt;
   opt.connectivity = true;
   const auto s = sk::skeletonize(mg::make_torus(60, 20, 1.0, 0.3), opt, "torus");
-  // The 60 atoms around the ring: each links to its two neighbours at least; no triangle of
-  // the planar triangulation crosses the hole.
-  EXPECT_GE(s.atoms.edges.size(), 60u);
+  ASSERT_EQ(s.atoms.atoms.size(), 60u);
   mg::validate(s.atoms);
+  const auto& a = s.atoms.atoms;
+  // Inside the solid torus (the mesh's flat faces dip up to 1e-3 below its inner equator).
+  auto inside = [](const Vector3d& p) {
+    return std::hypot(std::hypot(p.x(), p.y()) - 1.0, p.z()) < 0.3 + 2e-3;
+  };
+  for (const auto& e : s.atoms.edges)
+    for (double t = 0; t <= 1; t += 0.05)
+      EXPECT_TRUE(inside((1 - t) * a[e[0]].centre + t * a[e[1]].centre));
+  for (const auto& f : s.atoms.faces)
+    for (double u = 0; u <= 1; u += 0.1)
+      for (double v = 0; u + v <= 1; v += 0.1)
+        EXPECT_TRUE(inside(a[f[0]].centre + u * (a[f[1]].centre - a[f[0]].centre) +
+                           v * (a[f[2]].centre - a[f[0]].centre)));
+  // Every atom is linked to its two neighbours around the ring; chords across the hole are not.
+  std::size_t neighbours = 0;
+  for (const auto& e : s.atoms.edges)
+    neighbours += (a[e[0]].centre - a[e[1]].centre).norm() < 2 * std::sin(1.5 * M_PI / 60);
+  EXPECT_EQ(neighbours, 60u);
+  EXPECT_LT(s.atoms.edges.size(), sk::regular_simplices(s.atoms).edges.size());
+  EXPECT_LT(s.atoms.faces.size(), sk::regular_simplices(s.atoms).triangles.size());
+  EXPECT_EQ(s.stats.hidden_atoms, 0u);
 }
 
-TEST(Skeletonize, RefusesOpenNonManifoldEmptyAndFlatMeshes) {
-  auto error = [](const mg::PolygonSoup& m) {
-    try {
-      sk::skeletonize(m, {}, "m.off");
-    } catch (const mg::InvalidInput& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+TEST(SolidQuery, InsideTestsAndDistancesOnABox) {
+  const sk::SolidQuery box(mg::make_box(Vector3d::Zero(), Vector3d(2, 1, 1)));
+  EXPECT_TRUE(box.contains(Vector3d(1, 0.5, 0.5)));
+  EXPECT_FALSE(box.contains(Vector3d(3, 0.5, 0.5)));
+  EXPECT_NEAR(box.distance(Vector3d(1, 0.5, 0.5)), 0.5, 1e-15);
+  EXPECT_NEAR(box.distance(Vector3d(1, 0.5, 0.5), Vector3d(2, 0.5, 0.5)), 0.5, 1e-15);
+  EXPECT_NEAR(box.distance(Vector3d(3, 0.5, 0.5)), 1.0, 1e-15);
+  EXPECT_TRUE(box.segment_inside(Vector3d(0.1, 0.5, 0.5), Vector3d(1.9, 0.5, 0.5)));
+  EXPECT_FALSE(box.segment_inside(Vector3d(0.1, 0.5, 0.5), Vector3d(2.1, 0.5, 0.5)));
+  EXPECT_TRUE(
+      box.triangle_inside(Vector3d(0.1, 0.1, 0.1), Vector3d(1.9, 0.1, 0.1), Vector3d(1, 0.9, 0.9)));
+  EXPECT_FALSE(
+      box.triangle_inside(Vector3d(0.1, 0.1, 0.1), Vector3d(1.9, 0.1, 0.1), Vector3d(1, 1.5, 0.5)));
+}
+
+TEST(Skeletonize, RefusesOpenNonManifoldEmptyFlatAndBrokenMeshes) {
   mg::PolygonSoup open = mg::make_box(Vector3d::Zero(), Vector3d::Ones());
   open.faces.pop_back();
-  EXPECT_EQ(error(open), "m.off: open mesh (4 boundary edges): poles need a closed surface");
+  EXPECT_EQ(refusal(open), "m.off: open mesh (4 boundary edges): poles need a closed surface");
   mg::PolygonSoup fin = mg::make_box(Vector3d::Zero(), Vector3d::Ones());
   fin.points.push_back(Vector3d(0.5, -1, 0));
   fin.faces.push_back({0, 1, 8});
-  EXPECT_EQ(error(fin).rfind("m.off: non-manifold mesh: edge (0, 1) is shared by 3 faces", 0), 0u);
-  EXPECT_EQ(error(mg::PolygonSoup{}), "m.off: empty mesh (no faces)");
-  // A closed but flat mesh: two triangles back to back.
+  EXPECT_EQ(refusal(fin).rfind("m.off: non-manifold mesh: edge (0, 1) is shared by 3 faces", 0),
+            0u);
+  EXPECT_EQ(refusal(mg::PolygonSoup{}), "m.off: empty mesh (no faces)");
+  // Closed but flat: two triangles back to back.
   mg::PolygonSoup flat;
   flat.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   flat.faces = {{0, 1, 2}, {0, 2, 1}};
-  EXPECT_EQ(error(flat), "m.off: fewer than 4 non-coplanar samples: no Delaunay cell");
-}
-
-TEST(Skeletonize, SameAtomsAtOneAndTwoThreads) {
-  const auto mesh = mg::make_bumpy_torus(40, 30, 1.0, 0.35, 0.1, 6, 3);
-  sk::SkeletonOptions opt;
-  opt.random_samples = 2000;
-  mg::MedialSurface one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = sk::skeletonize(mesh, opt, "b").atoms;
-  }
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = sk::skeletonize(mesh, opt, "b").atoms;
-  }
-  ASSERT_EQ(one.atoms.size(), two.atoms.size());
-  for (std::size_t i = 0; i < one.atoms.size(); ++i) {
-    EXPECT_EQ(one.atoms[i].centre, two.atoms[i].centre);
-    EXPECT_EQ(one.atoms[i].radius, two.atoms[i].radius);
-  }
+  EXPECT_EQ(refusal(flat), "m.off: fewer than 4 non-coplanar samples: no Delaunay cell");
+  mg::PolygonSoup nan = mg::make_box(Vector3d::Zero(), Vector3d::Ones());
+  nan.points[3].y() = NAN;
+  EXPECT_EQ(refusal(nan), "m.off: vertex 3 has a non-finite coordinate");
+  mg::PolygonSoup range = mg::make_box(Vector3d::Zero(), Vector3d::Ones());
+  range.faces[2][1] = 8;
+  EXPECT_EQ(refusal(range), "m.off: face 2: vertex index 8 out of range");
+  mg::PolygonSoup inverted = mg::make_box(Vector3d::Zero(), Vector3d::Ones());
+  std::reverse(inverted.faces[0].begin(), inverted.faces[0].end());
+  EXPECT_EQ(refusal(inverted).rfind("m.off: ", 0), 0u);
+  EXPECT_NE(refusal(inverted), "(accepted)");
 }
 
 }  // namespace

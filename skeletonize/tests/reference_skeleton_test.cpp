@@ -61,11 +61,13 @@ TEST_P(ReferenceSkeleton, PolesAreInsideAndTouchTheirSamples) {
     const int a = s.atom_of_sample[i];
     if (a < 0) continue;
     const auto& atom = s.atoms.atoms[a];
-    EXPECT_NEAR((s.samples[i] - atom.centre).norm(), atom.radius, tol) << GetParam() << " sample " << i;
+    EXPECT_NEAR((s.samples[i] - atom.centre).norm(), atom.radius, tol)
+        << GetParam() << " sample " << i;
   }
   double deepest = 0;
   for (const auto& p : s.samples)
-    for (const auto& atom : s.atoms.atoms) deepest = std::max(deepest, atom.radius - (p - atom.centre).norm());
+    for (const auto& atom : s.atoms.atoms)
+      deepest = std::max(deepest, atom.radius - (p - atom.centre).norm());
   EXPECT_LE(deepest, tol) << GetParam();
 }
 

@@ -20,36 +20,43 @@ struct SkeletonOptions {
   std::size_t random_samples = 0;  ///< add this many area-uniform random points on the faces
   std::uint64_t seed = 1;          ///< of the random samples (counter-based: reproducible)
   /// Merge tolerance T, model units (negative: 1e-3 of the mesh's bounding-box diagonal).
-  /// Poles within T / 2 of a larger pole join its atom, and a ball inside another up to T / 2
-  /// is dropped: every sample lies within T of the surface of its atom.
+  /// Poles within T / 2 of a larger pole join its atom, and a ball inside another kept ball up
+  /// to T / 2 is dropped: every sample then lies within T of the surface of its atom.
   double merge_tol = -1;
-  /// Radius = exact distance from the centre to the mesh, so no ball leaves the object; clamped
-  /// balls under 1e-2 of the diagonal that meet no other ball are dropped.
+  /// Radius = exact distance from the centre to the mesh (AABB tree), so no ball leaves the
+  /// object. Clamping can cut small balls off the rest (see isolated_fraction).
   bool clamp_radius = false;
+  /// With clamp_radius: a group of clamped balls that meets no other ball (a component of their
+  /// union) and whose largest ball is under this fraction of the bounding-box diagonal is
+  /// dropped, unless it holds the largest ball. 0: keep every ball.
+  double isolated_fraction = 1e-2;
   /// Also output the edges and triangles of the regular triangulation of the atoms (weights
-  /// r^2) that lie inside the object (midpoint, resp. centroid, inside).
+  /// r^2) that lie inside the object (the closed segment or triangle meets no mesh face and its
+  /// midpoint, resp. centroid, is inside).
   bool connectivity = false;
 };
 
 struct SkeletonStats {
-  std::size_t samples = 0;
-  std::size_t duplicate_samples = 0;   ///< samples at the same point as an earlier one
-  std::size_t hull_samples = 0;        ///< on the convex hull (incident to infinite cells)
-  std::size_t skipped_samples = 0;     ///< no inside Voronoi vertex: no pole
-  std::size_t cells = 0;               ///< finite Delaunay cells
-  std::size_t exact_circumcentres = 0; ///< cells whose inexact circumcentre failed the check
-  std::size_t rejected_cells = 0;      ///< circumcentre not representable (numerical only)
-  std::size_t poles = 0;               ///< inner poles found
-  std::size_t merged = 0;              ///< poles merged into another pole's atom
-  std::size_t pruned = 0;              ///< atoms inside another ball (up to merge_tol)
-  std::size_t dropped_small = 0;       ///< small isolated balls dropped after clamping
-  std::size_t hidden_atoms = 0;        ///< atoms without a vertex in the regular triangulation
+  std::size_t samples = 0;              ///< vertices + midpoints + random points
+  std::size_t duplicate_samples = 0;    ///< at the same point as another sample (one is kept)
+  std::size_t hull_samples = 0;         ///< on the convex hull (incident to infinite cells)
+  std::size_t skipped_samples = 0;      ///< no Voronoi vertex inside the object: no pole
+  std::size_t cells = 0;                ///< finite Delaunay cells
+  std::size_t exact_circumcentres = 0;  ///< cells whose interval circumcentre was too wide
+  std::size_t rejected_cells = 0;       ///< exact circumcentre not a finite double (numerical only)
+  std::size_t poles = 0;                ///< inner poles found (one per distinct sample at most)
+  std::size_t merged = 0;               ///< poles merged into another pole's atom
+  std::size_t pruned = 0;               ///< atoms inside another ball (up to merge_tol / 2)
+  std::size_t dropped_small = 0;        ///< balls of small isolated groups dropped after clamping
+  std::size_t hidden_atoms = 0;         ///< atoms without a vertex in the regular triangulation
+                                        ///< (computed with --connectivity only)
   std::size_t atoms = 0;
   double diagonal = 0, merge_tol = 0;  ///< model units
-  double rmin = 0, rmax = 0;           ///< model units
-  double worst_overshoot = 0;          ///< max of r - distance(centre, mesh), model units
-  double seconds_delaunay = 0, seconds_poles = 0, seconds_merge = 0, seconds_clamp = 0,
-         seconds_connectivity = 0;
+  double rmin = 0, rmax = 0;           ///< of the output atoms, model units
+  double pole_overshoot = 0;           ///< max of r - distance(centre, mesh) before clamping
+  double worst_overshoot = 0;          ///< the same for the output atoms (0 when clamped)
+  double seconds_setup = 0, seconds_delaunay = 0, seconds_poles = 0, seconds_merge = 0,
+         seconds_distances = 0, seconds_connectivity = 0;
 };
 
 struct Skeleton {
@@ -63,7 +70,7 @@ struct Skeleton {
 /// over its triangles). Immutable after construction; queries are thread-safe.
 class SolidQuery {
  public:
-  /// @pre a closed mesh (polygons are fan-triangulated)
+  /// @pre a closed mesh (polygons are fan-triangulated), indices in range
   explicit SolidQuery(const PolygonSoup& mesh);
   ~SolidQuery();
   SolidQuery(const SolidQuery&) = delete;
@@ -72,17 +79,27 @@ class SolidQuery {
   bool contains(const Eigen::Vector3d& p) const;
   /// Unsigned distance to the mesh, model units.
   double distance(const Eigen::Vector3d& p) const;
+  /// The same, starting the search from `hint`, a point on the mesh (a sample) near the answer.
+  double distance(const Eigen::Vector3d& p, const Eigen::Vector3d& hint) const;
+  /// Segment [a, b] meets no mesh face and its midpoint is inside.
+  bool segment_inside(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
+  /// Triangle (a, b, c) meets no mesh face and its centroid is inside.
+  bool triangle_inside(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                       const Eigen::Vector3d& c) const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-/// Inner poles of a closed mesh.
+/// Inner poles of a closed mesh. Output is identical at any thread count and for any vertex or
+/// face order (except for random samples, drawn face by face): atoms by decreasing pole radius
+/// (ties by sample position), connectivity sorted.
 /// @param mesh  a closed, oriented 2-manifold (any polygons; they are fan-triangulated)
 /// @param name  used in messages
-/// @pre mesh closed, manifold, oriented, with at least 4 non-coplanar samples
-/// @throws InvalidInput naming `name` and the problem (open, non-manifold, empty, flat)
+/// @pre mesh non-empty, finite coordinates, indices in range, closed, manifold, oriented, with
+///      at least 4 non-coplanar samples; opt.merge_tol finite; opt.isolated_fraction >= 0
+/// @throws InvalidInput naming `name` and the problem (open, non-manifold, empty, flat, ...)
 Skeleton skeletonize(const PolygonSoup& mesh, const SkeletonOptions& opt, const std::string& name);
 
 }  // namespace mg::skeletonize
