@@ -5,4 +5,5 @@ cd "$(dirname "$0")"
 source scripts/common.sh
 mg_install
 mg_build
-"$MG_PYTHON" experiments/models.py --build "$MG_BUILD_DIR" --write-results "$@"
+"$MG_PYTHON" experiments/models.py --build "$MG_BUILD_DIR" --write-results --quiet
+"$MG_PYTHON" experiments/reproduce.py --build "$MG_BUILD_DIR" "$@"

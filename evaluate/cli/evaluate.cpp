@@ -151,7 +151,7 @@ int evaluate_main(int argc, char** argv) {
   auto* atoms_cmd = app.add_subcommand(
       "atoms", "two-sided distances between MESH and G, the union of the atoms' spheres and cones");
   std::string atoms_file, cones = "rt";
-  double cone_filter = 0, diagonal = 0;
+  double cone_filter = mg::ConeOptions{}.min_circle_ratio, diagonal = 0;
   Report atoms_report;
   atoms_cmd->add_option("mesh", mesh_path, "mesh to judge")->required();
   atoms_cmd->add_option("atoms", atoms_file, "medial atoms (.ma, or x y z r lines)")->required();

@@ -35,8 +35,12 @@ TEST(AtomsDistance, FineGarbingOfTwoBallsIsNearZero) {
   mg::OctreeOptions topt;
   topt.min_depth = 6;
   const mg::Octree tree = mg::build_octree(s, topt);
-  const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s);
-  const auto r = ev::atoms_distance(mg::soup_from_mesh(m2.mesh), s, {}, "m2");
+  mg::RefineOptions ropt;
+  ropt.cones.min_circle_ratio = 0;  // keep the cone of these two balls
+  const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s, ropt);
+  ev::AtomsDistanceOptions aopt;
+  aopt.cones = ropt.cones;
+  const auto r = ev::atoms_distance(mg::soup_from_mesh(m2.mesh), s, aopt, "m2");
   EXPECT_LT(r.distance.hausdorff, 2e-3 * r.diagonal);  // chordal error of a leaf-size mesh
   EXPECT_LT(r.distance.rms, 2e-4 * r.diagonal);
   EXPECT_EQ(r.cones, 1u);

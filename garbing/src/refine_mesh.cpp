@@ -334,11 +334,13 @@ class Refiner {
     return out;
   }
 
-  /// Repairs fold-overs in two stages, re-detecting after each round:
+  /// Repairs fold-overs in stages, re-detecting after each round:
   /// 1. on G: the vertices of defective triangles and their neighbours move to the closest
   ///    point of G to the centroid of their neighbours (untangles while staying on G);
   /// 2. off G, as a last resort: the vertices still involved are pulled back along their
-  ///    migration path, halving their step each round.
+  ///    migration path, halving their step each round;
+  /// 3. if some are still folded: they (and, round by round, their neighbours) return to their
+  ///    starting point, the fold-free dual of M1.
   void repair(const std::vector<std::array<int, 3>>& triangles) {
     const auto t0 = Clock::now();
     TriangleDefects d = find_triangle_defects(soup_of(triangles));
@@ -409,6 +411,24 @@ class Refiner {
         step[v] /= 2;
         moved[v] = 1;
         position_[v] = start_[v] + step[v] * (target[v] - start_[v]);
+        ++stats_.pulled_back;
+      }
+      redetect(involved);
+    }
+    // Still folded: put the vertices involved back where they started (the dual of M1 is
+    // fold-free), spreading to their neighbours round by round.
+    for (int round = 0; round < opt_.repair_rounds; ++round) {
+      if (d.intersecting_pairs.empty() && d.degenerate_faces.empty()) break;
+      std::vector<int> involved = involved_vertices(d, triangles);
+      if (round > 0) {
+        const std::size_t n = involved.size();
+        for (std::size_t k = 0; k < n; ++k) involved.insert(involved.end(), ring[involved[k]].begin(), ring[involved[k]].end());
+        std::sort(involved.begin(), involved.end());
+        involved.erase(std::unique(involved.begin(), involved.end()), involved.end());
+      }
+      for (int v : involved) {
+        position_[v] = start_[v];
+        moved[v] = 1;
         ++stats_.pulled_back;
       }
       redetect(involved);

@@ -50,10 +50,12 @@ TEST(RefineMesh, OneSphereReproducesThePapersRowOnTheSphere) {
 
 TEST(RefineMesh, TwoOverlappingSpheresLandExactlyOnG) {
   const auto s = atoms({{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.2, 0.3, -0.2), 0.7}});
-  const auto pairs = mg::cone_pairs(s, {});
+  mg::RefineOptions opt;
+  opt.cones.min_circle_ratio = 0;  // circle radius 0.80 of the smaller ball: keep the cone
+  const auto pairs = mg::cone_pairs(s, opt.cones);
   ASSERT_EQ(pairs.size(), 1u);
   const mg::TargetShape shape(s, pairs);
-  const auto m2 = garb(s);
+  const auto m2 = garb(s, opt);
   EXPECT_EQ(m2.stats.cones, 1u);
   for (const Vector3d& p : points(m2.mesh)) {
     EXPECT_LT(shape.distance(p), 1e-9) << p.transpose();

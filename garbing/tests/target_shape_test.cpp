@@ -94,6 +94,7 @@ TEST(ConePairs, SourcesAndFilter) {
                                {Vector3d(10, 0, 0), 1}});
   s.edges = {{1, 0}, {2, 3}, {0, 4}};
   mg::ConeOptions opt;
+  opt.min_circle_ratio = 0;
   opt.source = mg::ConeSource::all_pairs;
   const auto all = mg::cone_pairs(s, opt);
   // 0-1, 1-2, 2-3 and 0-2 (distance 3 > 2: no), 1-4 (contains? no: 1.4 < 1.2? no) ...

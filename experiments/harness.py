@@ -1,0 +1,128 @@
+"""Shared plumbing of the experiment scripts: running the programs, JSON, tables, a job pool.
+
+Every number the experiments write comes from a program's JSON output; nothing is typed in.
+"""
+import concurrent.futures
+import csv
+import json
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+RESULTS = os.path.join(ROOT, "results")
+
+
+class StepError(RuntimeError):
+    pass
+
+
+class Runner:
+    """Runs the project's programs from <build>/bin and keeps their JSON reports."""
+
+    def __init__(self, build, work):
+        self.build = os.path.abspath(build)
+        self.work = os.path.abspath(work)
+        os.makedirs(self.work, exist_ok=True)
+
+    def bin(self, name):
+        return os.path.join(self.build, "bin", name)
+
+    def path(self, *parts):
+        p = os.path.join(self.work, *parts)
+        os.makedirs(os.path.dirname(p), exist_ok=True)
+        return p
+
+    def run(self, program, *args, json_out=None, label=""):
+        """Runs a program; returns its JSON report (from --stats FILE or stdout --json)."""
+        cmd = [self.bin(program), *map(str, args)]
+        t0 = time.time()
+        r = subprocess.run(cmd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
+        if r.returncode != 0:
+            raise StepError("%s failed (exit %d): %s\n  command: %s" % (
+                label or program, r.returncode, r.stderr.strip().splitlines()[-1:] or "",
+                " ".join(cmd)))
+        if json_out:
+            with open(json_out) as f:
+                data = json.load(f)
+        elif "--json" in args:
+            data = json.loads(r.stdout)
+        else:
+            data = {}
+        data.setdefault("_wall", time.time() - t0)
+        return data
+
+
+def load_manifest():
+    with open(os.path.join(HERE, "models.json")) as f:
+        return json.load(f)
+
+
+def write_atomically(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    tmp = path + ".partial"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def write_csv(path, rows, columns):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    tmp = path + ".partial"
+    with open(tmp, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        for r in rows:
+            w.writerow([r.get(c, "") for c in columns])
+    os.replace(tmp, path)
+
+
+def markdown_table(rows, columns, headers=None):
+    headers = headers or columns
+    out = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(columns)]
+    for r in rows:
+        out.append("| " + " | ".join(fmt(r.get(c, "")) for c in columns) + " |")
+    return "\n".join(out)
+
+
+def fmt(x):
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, float):
+        if x == 0:
+            return "0"
+        if abs(x) >= 100:
+            return "%.0f" % x
+        if abs(x) >= 1:
+            return "%.2f" % x
+        return "%.3g" % x
+    return str(x)
+
+
+def run_pool(jobs, workers, progress):
+    """Runs (name, function, args) jobs on a local process pool; returns {name: result}.
+    The first failure stops the run with its message."""
+    results = {}
+    with concurrent.futures.ProcessPoolExecutor(max_workers=workers) as pool:
+        futures = {pool.submit(fn, *args): name for name, fn, args in jobs}
+        for fut in concurrent.futures.as_completed(futures):
+            name = futures[fut]
+            try:
+                results[name] = fut.result()
+            except Exception as e:  # the first failure ends the run, with its message
+                for f in futures:
+                    f.cancel()
+                raise StepError("%s: %s" % (name, e))
+            progress("done  %s" % name)
+    return results
+
+
+def log(message):
+    print("[%s] %s" % (time.strftime("%H:%M:%S"), message), flush=True)
+
+
+def die(message):
+    print("reproduce: %s" % message, file=sys.stderr, flush=True)
+    sys.exit(1)

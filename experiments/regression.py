@@ -1,0 +1,72 @@
+#!/usr/bin/python3
+"""CTest regression (label `regression`): for every reference model of Table 1, the garbing of
+its paper atoms (vertex poles) is a closed, oriented 2-manifold with the union of the atoms'
+topology and no intersecting or degenerate triangles, and its Hausdorff and RMS distances to the
+original stay under the bounds experiments/reproduce.py wrote in regression_thresholds.json.
+It also reports (NOTE lines, not failures) issue 7's accuracy targets: H(M2, G) within one leaf
+side at depth d, and H(M2, O) <= H(G, O) + 0.25% of the diagonal.
+
+Usage: experiments/regression.py BUILD MODEL
+"""
+import json
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness as H  # noqa: E402
+
+
+def main(build, name):
+    with open(os.path.join(H.HERE, "regression_thresholds.json")) as f:
+        bounds = json.load(f)["models"][name]
+    with tempfile.TemporaryDirectory() as work:
+        R = H.Runner(build, work)
+        original = os.path.join(R.build, "models", name + ".off")
+        atoms = R.path("atoms.ma")
+        sk = R.run("skeletonize", original, "-o", atoms, "--stats", R.path("sk.json"), json_out=R.path("sk.json"))
+        m2 = R.path("m2.off")
+        g = R.run("garb", atoms, "-o", m2, "--stats", R.path("g.json"), json_out=R.path("g.json"))
+        check = R.run("evaluate", "check", m2, "--json")
+        d = R.run("evaluate", "distance", m2, original, "--samples", 300000, "--json")
+        samples = 2 * max(g["m2"]["vertices"], sk["samples"]) + 1000
+        to_g = R.run("evaluate", "atoms", m2, atoms, "--diagonal", d["diagonal"], "--samples", samples, "--json")
+        g_o = R.run("evaluate", "atoms", original, atoms, "--samples", samples, "--json")
+    leaf_pct = 100 * g["root_side"] / 2 ** g["min_depth"] / d["diagonal"]
+    problems = []
+    if not (check["closed"] and check["manifold"] and check["oriented"]):
+        problems.append("M2 is not a closed oriented 2-manifold")
+    union = sk["union"]
+    if (check["components"], check["euler"]) != (union["components"], union["euler"]):
+        problems.append("M2 has %d component(s), Euler characteristic %d; the union of the atoms %d, %d" % (
+            check["components"], check["euler"], union["components"], union["euler"]))
+    if check["intersecting_pairs"] or check["degenerate_triangles"]:
+        problems.append("%d intersecting pairs, %d degenerate triangles" % (
+            check["intersecting_pairs"], check["degenerate_triangles"]))
+    # Issue 7's accuracy targets, reported (not asserted): they do not hold yet on hand and
+    # anchor_dense, whose overshooting vertex poles leave fallbacks and repaired folds off G.
+    notes = []
+    if to_g["hausdorff_pct"] > leaf_pct:
+        notes.append("H(M2, G) %.3f%% above one leaf side %.3f%%" % (to_g["hausdorff_pct"], leaf_pct))
+    if d["hausdorff_pct"] > g_o["hausdorff_pct"] + 0.25:
+        notes.append("H(M2, O) %.3f%% above H(G, O) %.3f%% + 0.25%%" % (d["hausdorff_pct"], g_o["hausdorff_pct"]))
+    if d["hausdorff_pct"] > bounds["hausdorff_pct"]:
+        problems.append("Hausdorff %.3f%% above the bound %.3f%%" % (d["hausdorff_pct"], bounds["hausdorff_pct"]))
+    if d["rms_pct"] > bounds["rms_pct"]:
+        problems.append("RMS %.3f%% above the bound %.3f%%" % (d["rms_pct"], bounds["rms_pct"]))
+    print("%s: M2 V %d, genus %d, H %.3f%% (bound %.3f), RMS %.3f%% (bound %.3f), H(M2,G) %.3f%% (leaf %.3f%%), "
+          "H(G,O) %.3f%%, garbing %.2f s" % (
+              name, g["m2"]["vertices"], check["genus"], d["hausdorff_pct"], bounds["hausdorff_pct"], d["rms_pct"],
+              bounds["rms_pct"], to_g["hausdorff_pct"], leaf_pct, g_o["hausdorff_pct"], g["seconds"]["garbing"]))
+    for n in notes:
+        print("NOTE %s: %s" % (name, n))
+    for p in problems:
+        print("FAIL %s: %s" % (name, p))
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
+    sys.exit(main(sys.argv[1], sys.argv[2]))
