@@ -13,6 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iomanip>
 #include <memory>
 
@@ -31,6 +34,16 @@ void parse_samples(const std::string& samples, mg::skeletonize::SkeletonOptions&
     throw mg::InvalidInput("--samples: expected vertices, midpoints or a count, got '" + samples +
                            "'");
   opt.random_samples = std::stoul(samples);
+}
+
+/// Writes a text file at `temp` (reported as `target` in messages). @throws IoError
+void write_text(const std::string& temp, const std::string& target,
+                const std::function<void(std::ostream&)>& write) {
+  std::ofstream out(temp, std::ios::binary);
+  if (!out) throw mg::IoError(target + ": cannot open for writing");
+  write(out);
+  out.flush();
+  if (!out) throw mg::IoError(target + ": write failed");
 }
 
 nlohmann::ordered_json stats_json(const std::string& input, const std::string& sampling,
@@ -108,7 +121,11 @@ int skeletonize_main(int argc, char** argv) {
 
   parse_samples(samples, opt);
   mg::check_output_path(output, {input});
-  if (!stats_path.empty()) mg::check_output_path(stats_path, {input, output});
+  if (!stats_path.empty()) {
+    mg::check_output_path(stats_path, {input});
+    if (std::filesystem::weakly_canonical(stats_path) == std::filesystem::weakly_canonical(output))
+      throw mg::InvalidInput(stats_path + ": --stats names the output file");
+  }
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0)
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -124,12 +141,19 @@ int skeletonize_main(int argc, char** argv) {
   const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   const mg::MeshTopology mt = mg::mesh_topology(mesh);
 
-  mg::write_medial_surface(skeleton.atoms, output);
+  // Both files appear, or neither: each is written to a temporary file, renamed at the end.
+  mg::AtomicFile ma_file(output);
+  write_text(ma_file.temp_path(), output,
+             [&](std::ostream& out) { mg::format_medial_surface(out, skeleton.atoms); });
+  std::unique_ptr<mg::AtomicFile> stats_file;
   if (!stats_path.empty()) {
+    stats_file = std::make_unique<mg::AtomicFile>(stats_path);
     const auto j = stats_json(input, samples, skeleton, opt, ut, mt, seconds_union, seconds);
-    mg::write_file_atomically(stats_path,
-                              [&](std::ostream& out) { out << std::setw(2) << j << '\n'; });
+    write_text(stats_file->temp_path(), stats_path,
+               [&](std::ostream& out) { out << std::setw(2) << j << '\n'; });
   }
+  ma_file.commit();
+  if (stats_file) stats_file->commit();
   if (ut.components != mt.components || ut.euler != mt.euler)
     std::cerr << "skeletonize: warning: " << input << ": the union of the atoms has "
               << ut.components << " component(s) and Euler characteristic " << ut.euler

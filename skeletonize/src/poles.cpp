@@ -280,7 +280,7 @@ class BallTree {
       n.sphere_radius = std::max(n.sphere_radius, (b.centre - n.sphere_centre).norm() + b.radius);
     }
     n.sphere_radius *= 1 + 1e-12;  // the rounding of the norms above
-    if (end - begin > 8) {
+    if (end - begin > 16) {
       // Split the longest of the four extents (x, y, z, radius): nodes of similar radii keep
       // the containment bound max_radius - r tight.
       double min_radius = INFINITY;
@@ -574,16 +574,17 @@ class Skeletonizer {
       });
       return found;
     };
-    // In parallel: the balls inside no larger ball are kept whatever happens. Then, in order
-    // of decreasing radius, the others: dropped if a kept ball contains them.
-    std::vector<char> candidate(atoms.size(), 0);
-    tbb::parallel_for(std::size_t(0), atoms.size(), [&](std::size_t i) {
-      candidate[i] = contains(i, [](int) { return true; }) >= 0;
-    });
+    // In parallel, a first container of each ball (none: kept whatever happens). Then, in order
+    // of decreasing radius, each ball with a container is dropped if a kept ball contains it
+    // (most often its first container: no second search).
+    std::vector<int> first(atoms.size(), -1);
+    tbb::parallel_for(std::size_t(0), atoms.size(),
+                      [&](std::size_t i) { first[i] = contains(i, [](int) { return true; }); });
     std::vector<char> kept(atoms.size(), 0);
     std::vector<int> target(atoms.size(), -1);
     for (std::size_t i = 0; i < atoms.size(); ++i) {
-      if (candidate[i]) target[i] = contains(i, [&](int j) { return kept[j] != 0; });
+      if (first[i] >= 0)
+        target[i] = kept[first[i]] ? first[i] : contains(i, [&](int j) { return kept[j] != 0; });
       kept[i] = target[i] < 0;
     }
     out_.stats.pruned = static_cast<std::size_t>(std::count(kept.begin(), kept.end(), 0));
@@ -701,7 +702,10 @@ class Skeletonizer {
 
   void finish() {
     const auto& atoms = out_.atoms.atoms;
-    if (atoms.empty()) throw InvalidInput(name_ + ": no inner pole found");
+    if (atoms.empty())
+      throw InvalidInput(name_ +
+                         ": no Voronoi vertex of the samples lies inside the mesh (add samples: " +
+                         "edge midpoints or random points)");
     out_.atom_of_sample.resize(out_.samples.size());
     for (std::size_t s = 0; s < out_.samples.size(); ++s)
       out_.atom_of_sample[s] = atom_of_point_[unique_of_sample_[s]];
