@@ -33,12 +33,13 @@ namespace {
 using K = CGAL::Epick;
 using Point = K::Point_3;
 using Vec3 = Eigen::Vector3d;
-// The Delaunay triangulation is built sequentially: CGAL's parallel insertion (Parallel_tag and
-// its lock grid) measured 1.5-2x slower at 1 thread and 4-6x slower at 2 threads as soon as the
-// 2 cores are shared (100k samples: 3.0-4.3 s against 0.6-0.7 s). Everything after it runs in
-// parallel. With CGAL's symbolic perturbation the triangulation does not depend on the insertion
-// order (which CGAL's spatial sort randomises), and nothing below depends on how it stores its
-// cells: results are the same at any thread count.
+// The Delaunay triangulation is built sequentially. CGAL's parallel insertion (Parallel_tag,
+// lock grid) was measured on 100k samples of the bumpy torus: 0.38-0.49 s against 0.55-0.71 s
+// on 2 idle cores, 1.0 s at 1 thread, and 3.0-4.3 s as soon as the 2 cores are shared (load
+// 4): a small gain against a large risk. Everything after it runs in parallel. With CGAL's
+// symbolic perturbation the triangulation does not depend on the insertion order (which CGAL's
+// spatial sort randomises), and nothing below depends on how it stores its cells: results are
+// the same at any thread count.
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
 using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb>>;
 using SurfaceMesh = CGAL::Surface_mesh<Point>;
@@ -658,26 +659,29 @@ class Skeletonizer {
         std::max_element(atoms.begin(), atoms.end(),
                          [](const auto& a, const auto& b) { return a.radius < b.radius; }) -
         atoms.begin());
-    std::vector<char> seen(atoms.size(), 0);
+    // Per ball: 0 not reached yet, 1 in the group being grown, 2 in a group that reaches a
+    // larger ball (so does every group meeting it), 3 dropped.
+    std::vector<char> state(atoms.size(), 0);
     for (std::size_t i = 0; i < atoms.size(); ++i) {
       if (!(atoms[i].radius > 0)) target[i] = -2;
-      if (seen[i] || !(atoms[i].radius > 0 && atoms[i].radius < small)) continue;
+      if (state[i] != 0 || !(atoms[i].radius > 0 && atoms[i].radius < small)) continue;
       // The group through small balls only; it stays if it reaches a larger ball.
       std::vector<int> group = {static_cast<int>(i)};
-      seen[i] = 1;
+      state[i] = 1;
       bool anchored = false;
       for (std::size_t k = 0; k < group.size() && !anchored; ++k)
         anchored = tree.find_meeting(atoms[group[k]].centre, atoms[group[k]].radius, [&](int j) {
-          if (!(atoms[j].radius > 0)) return false;
-          if (!(atoms[j].radius < small)) return true;
-          if (!seen[j]) {
-            seen[j] = 1;
-            group.push_back(j);
-          }
+          if (!(atoms[j].radius > 0) || state[j] == 1) return false;
+          if (state[j] == 2 || !(atoms[j].radius < small)) return true;
+          state[j] = 1;
+          group.push_back(j);
           return false;
         });
-      if (anchored || std::find(group.begin(), group.end(), largest) != group.end()) continue;
-      for (int j : group) target[j] = -2;
+      const bool keep = anchored || std::find(group.begin(), group.end(), largest) != group.end();
+      for (int j : group) {
+        state[j] = keep ? 2 : 3;
+        if (!keep) target[j] = -2;
+      }
     }
     return target;
   }

@@ -10,6 +10,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
+#include <map>
+#include <numeric>
 
 namespace {
 
@@ -158,6 +161,47 @@ TEST_P(ReferenceSkeleton, ClampedBallsStayInside) {
     EXPECT_GT(std::abs(b.winding), 0.5) << GetParam() << " atom " << i;
   }
   EXPECT_EQ(s.stats.worst_overshoot, 0.0);
+}
+
+TEST_P(ReferenceSkeleton, ClampingDropsExactlyTheSmallCutOffGroups) {
+  sk::SkeletonOptions opt = model().options;
+  opt.clamp_radius = true;
+  opt.isolated_fraction = 0;
+  const auto soup = mesh();
+  const auto all = sk::skeletonize(soup, opt, GetParam()).atoms.atoms;
+  opt.isolated_fraction = 0.01;
+  const auto kept = sk::skeletonize(soup, opt, GetParam());
+  // The groups of balls that meet (components of their union), by brute force.
+  std::vector<int> group(all.size());
+  std::iota(group.begin(), group.end(), 0);
+  std::function<int(int)> find = [&](int x) {
+    return group[x] == x ? x : group[x] = find(group[x]);
+  };
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if ((all[i].centre - all[j].centre).norm() <= all[i].radius + all[j].radius)
+        group[find(static_cast<int>(i))] = find(static_cast<int>(j));
+  std::map<int, double> largest_in;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    double& r = largest_in[find(static_cast<int>(i))];
+    r = std::max(r, all[i].radius);
+  }
+  const int largest =
+      static_cast<int>(std::max_element(all.begin(), all.end(),
+                                        [](auto& a, auto& b) { return a.radius < b.radius; }) -
+                       all.begin());
+  std::vector<mg::MedialAtom> expected;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const int g = find(static_cast<int>(i));
+    if (largest_in[g] >= 0.01 * kept.stats.diagonal || g == find(largest))
+      expected.push_back(all[i]);
+  }
+  ASSERT_EQ(kept.atoms.atoms.size(), expected.size()) << GetParam();
+  EXPECT_EQ(kept.stats.dropped_small, all.size() - expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(kept.atoms.atoms[i].centre, expected[i].centre) << GetParam() << " atom " << i;
+    EXPECT_EQ(kept.atoms.atoms[i].radius, expected[i].radius) << GetParam() << " atom " << i;
+  }
 }
 
 TEST_P(ReferenceSkeleton, DocumentedSamplingKeepsTheTopology) {

@@ -49,7 +49,7 @@ struct SkeletonStats {
   std::size_t pruned = 0;               ///< atoms inside another ball (up to merge_tol / 2)
   std::size_t dropped_small = 0;        ///< balls of small isolated groups dropped after clamping
   std::size_t hidden_atoms = 0;         ///< atoms without a vertex in the regular triangulation
-                                        ///< (computed with --connectivity only)
+                                        ///< (computed with opt.connectivity only)
   std::size_t atoms = 0;
   double diagonal = 0, merge_tol = 0;  ///< model units
   double rmin = 0, rmax = 0;           ///< of the output atoms, model units

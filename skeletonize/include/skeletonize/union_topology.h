@@ -18,10 +18,17 @@ struct UnionTopology {
   /// Euler characteristic of the union's boundary surface, 2 * solid_euler: what a closed mesh
   /// of the union has (one ball: 2, a solid torus: 0).
   long euler = 0;
-  std::size_t hidden_atoms = 0;  ///< balls inside the union of the others' power cells
+  /// Atoms without a vertex in the regular triangulation (empty power cell: the ball lies
+  /// inside the union of the others). They, and balls covered by the others whose power cell
+  /// misses their ball, never count as components.
+  std::size_t hidden_atoms = 0;
 };
 
+/// Components and Euler characteristic of the union of the atoms' balls. Coplanar and
+/// collinear centres are handled (the planar complex, resp. overlapping intervals).
 /// @pre atoms valid (see validate)   @throws InvalidInput
+/// @note cost: 0.5 s for the 10,032 heavily overlapping pole balls of the bumpy torus (exact
+///       predicates), 0.2 s once clamped
 UnionTopology union_topology(const MedialSurface& atoms);
 
 /// The simplices of the regular triangulation of the atoms (weights r^2), as atom indices:
