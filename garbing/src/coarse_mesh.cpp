@@ -2,6 +2,9 @@
 
 #include "garbing/errors.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <numeric>
 
@@ -49,48 +52,60 @@ class Extractor {
  private:
   // --- faces -------------------------------------------------------------------------------
 
-  void emit(int level, Lattice corner, int axis, int sign, int owner) {
-    CoarseFace f;
-    f.axis = axis;
-    f.sign = sign;
-    f.level = level;
-    f.corner = corner;
-    f.owner = owner;
-    out_.faces.push_back(f);
+  /// The one rule: for each face-adjacent pair (active leaf, inactive leaf or outside), the
+  /// face of the finer of the two, oriented out of the active leaf. Leaves in parallel, faces
+  /// concatenated in leaf order.
+  void collect_faces() {
+    const std::vector<int>& leaves = tree_.leaves;
+    std::vector<std::vector<CoarseFace>> per(leaves.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::vector<int> finer;
+                        for (std::size_t i = r.begin(); i != r.end(); ++i)
+                          faces_of_leaf(leaves[i], per[i], finer);
+                      });
+    std::size_t total = 0;
+    for (const auto& v : per) total += v.size();
+    out_.faces.reserve(total);
+    for (const auto& v : per) out_.faces.insert(out_.faces.end(), v.begin(), v.end());
   }
 
-  /// The one rule: for each face-adjacent pair (active leaf, inactive leaf or outside), the
-  /// face of the finer of the two, oriented out of the active leaf.
-  void collect_faces() {
-    std::vector<int> finer;
-    for (int c : tree_.leaves) {
-      const OctreeCell& cell = tree_.cells[c];
-      if (!cell.is_active()) continue;
-      for (int axis = 0; axis < 3; ++axis)
-        for (int sign : {-1, 1}) {
-          Lattice nb = {cell.ijk[0], cell.ijk[1], cell.ijk[2]};
-          nb[axis] += sign;
-          Lattice own = {cell.ijk[0], cell.ijk[1], cell.ijk[2]};
-          own[axis] += sign > 0 ? 1 : 0;
-          const int n = find_cell(tree_, cell.level, nb);
-          if (n < 0 || (tree_.cells[n].is_leaf() && !tree_.cells[n].is_active())) {
-            emit(cell.level, own, axis, sign, c);  // outside, or inactive and not finer
-            continue;
-          }
-          if (tree_.cells[n].is_leaf()) continue;  // active neighbour
-          std::array<int, 3> offset = {0, 0, 0};
-          offset[axis] = sign;
-          finer.clear();
-          leaves_facing(tree_, n, offset, finer);
-          for (int f : finer) {
-            const OctreeCell& leaf = tree_.cells[f];
-            if (leaf.is_active()) continue;
-            Lattice corner = {leaf.ijk[0], leaf.ijk[1], leaf.ijk[2]};
-            corner[axis] += sign > 0 ? 0 : 1;  // the finer leaf's face toward `cell`
-            emit(leaf.level, corner, axis, sign, c);
-          }
+  void faces_of_leaf(int c, std::vector<CoarseFace>& out, std::vector<int>& finer) const {
+    const OctreeCell& cell = tree_.cells[c];
+    if (!cell.is_active()) return;
+    auto emit = [&](int level, const Lattice& corner, int axis, int sign) {
+      CoarseFace f;
+      f.axis = axis;
+      f.sign = sign;
+      f.level = level;
+      f.corner = corner;
+      f.owner = c;
+      out.push_back(f);
+    };
+    for (int axis = 0; axis < 3; ++axis)
+      for (int sign : {-1, 1}) {
+        Lattice nb = {cell.ijk[0], cell.ijk[1], cell.ijk[2]};
+        nb[axis] += sign;
+        Lattice own = {cell.ijk[0], cell.ijk[1], cell.ijk[2]};
+        own[axis] += sign > 0 ? 1 : 0;
+        const int n = find_cell(tree_, cell.level, nb);
+        if (n < 0 || (tree_.cells[n].is_leaf() && !tree_.cells[n].is_active())) {
+          emit(cell.level, own, axis, sign);  // outside, or inactive and not finer
+          continue;
         }
-    }
+        if (tree_.cells[n].is_leaf()) continue;  // active neighbour
+        std::array<int, 3> offset = {0, 0, 0};
+        offset[axis] = sign;
+        finer.clear();
+        leaves_facing(tree_, n, offset, finer);
+        for (int f : finer) {
+          const OctreeCell& leaf = tree_.cells[f];
+          if (leaf.is_active()) continue;
+          Lattice corner = {leaf.ijk[0], leaf.ijk[1], leaf.ijk[2]};
+          corner[axis] += sign > 0 ? 0 : 1;  // the finer leaf's face toward `cell`
+          emit(leaf.level, corner, axis, sign);
+        }
+      }
   }
 
   /// The four corners of face f in lattice units at the deepest level, CCW seen from the side
@@ -112,7 +127,7 @@ class Extractor {
   void number_vertices() {
     for (const CoarseFace& f : out_.faces)
       for (const Lattice& p : corners(f)) lattice_.push_back(p);
-    std::sort(lattice_.begin(), lattice_.end());
+    tbb::parallel_sort(lattice_.begin(), lattice_.end());
     lattice_.erase(std::unique(lattice_.begin(), lattice_.end()), lattice_.end());
   }
 
@@ -145,34 +160,40 @@ class Extractor {
         on_lines.push_back(line_point(c[(i + 1) % 4], e));
       }
     }
-    std::sort(on_lines.begin(), on_lines.end());
+    tbb::parallel_sort(on_lines.begin(), on_lines.end());
     on_lines.erase(std::unique(on_lines.begin(), on_lines.end()), on_lines.end());
 
     loops_.resize(out_.faces.size());
-    for (std::size_t fi = 0; fi < out_.faces.size(); ++fi) {
-      const auto c = corners(out_.faces[fi]);
-      std::vector<int>& loop = loops_[fi];
-      for (int i = 0; i < 4; ++i) {
-        const Lattice& p = c[i];
-        const Lattice& q = c[(i + 1) % 4];
-        loop.push_back(vertex_id(p));
-        const int e = edge_axis(p, q);
-        auto key = line_point(p, e);
-        key[3] = std::min(p[e], q[e]);
-        auto first = std::upper_bound(on_lines.begin(), on_lines.end(), key);
-        key[3] = std::max(p[e], q[e]);
-        auto last = std::lower_bound(on_lines.begin(), on_lines.end(), key);
-        if (first == last) continue;
-        std::vector<int> inner;
-        for (auto it = first; it != last; ++it) {
-          Lattice h = p;
-          h[e] = (*it)[3];
-          inner.push_back(vertex_id(h));
-        }
-        if (p[e] > q[e]) std::reverse(inner.begin(), inner.end());
-        loop.insert(loop.end(), inner.begin(), inner.end());
-        out_.hanging_corners += inner.size();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out_.faces.size(), 512),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t fi = r.begin(); fi != r.end(); ++fi)
+                          build_loop(out_.faces[fi], on_lines, loops_[fi]);
+                      });
+    for (const auto& loop : loops_) out_.hanging_corners += loop.size() - 4;
+  }
+
+  /// The face's four corners in order, each followed by the hanging corners on its edge.
+  void build_loop(const CoarseFace& face, const std::vector<std::array<std::int64_t, 4>>& on_lines,
+                  std::vector<int>& loop) const {
+    const auto c = corners(face);
+    for (int i = 0; i < 4; ++i) {
+      const Lattice& p = c[i];
+      const Lattice& q = c[(i + 1) % 4];
+      loop.push_back(vertex_id(p));
+      const int e = edge_axis(p, q);
+      auto key = line_point(p, e);
+      key[3] = std::min(p[e], q[e]);
+      auto first = std::upper_bound(on_lines.begin(), on_lines.end(), key);
+      key[3] = std::max(p[e], q[e]);
+      auto last = std::lower_bound(on_lines.begin(), on_lines.end(), key);
+      if (first == last) continue;
+      const std::size_t begin = loop.size();
+      for (auto it = first; it != last; ++it) {
+        Lattice h = p;
+        h[e] = (*it)[3];
+        loop.push_back(vertex_id(h));
       }
+      if (p[e] > q[e]) std::reverse(loop.begin() + static_cast<std::ptrdiff_t>(begin), loop.end());
     }
   }
 
@@ -221,8 +242,8 @@ class Extractor {
           uses.push_back({b, a, false, static_cast<int>(f), cb, ca});
       }
     }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-      return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+    tbb::parallel_sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+      return std::tie(x.lo, x.hi, x.face, x.corner_lo) < std::tie(y.lo, y.hi, y.face, y.corner_lo);
     });
 
     UnionFind corners_of(n_corners);

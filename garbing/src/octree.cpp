@@ -93,13 +93,8 @@ void touching_leaves(const Octree& tree, int c, std::vector<int>& out) {
           nb[a] = static_cast<std::int64_t>(cell.ijk[a]) + offset[a];
           if (nb[a] < 0 || nb[a] >= size) inside = false;
           else {
-            std::uint64_t diff = static_cast<std::uint64_t>(nb[a]) ^ cell.ijk[a];
-            int bits = 0;
-            while (diff) {
-              ++bits;
-              diff >>= 1;
-            }
-            climb = std::max(climb, bits);
+            const std::uint64_t diff = static_cast<std::uint64_t>(nb[a]) ^ cell.ijk[a];
+            if (diff != 0) climb = std::max(climb, 64 - __builtin_clzll(diff));
           }
         }
         if (!inside) continue;
@@ -211,17 +206,6 @@ class OctreeBuilder {
   Vec3 cell_lo(const OctreeCell& c) const {
     const double s = tree_.side(c.level);
     return Vec3(c.ijk[0] * s, c.ijk[1] * s, c.ijk[2] * s);
-  }
-
-  bool ball_meets_cell(int i, const Vec3& lo, double side) const {
-    const Vec3& p = local_[i];
-    double d2 = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double d = std::max({lo[a] - p[a], 0.0, p[a] - (lo[a] + side)});
-      d2 += d * d;
-    }
-    const double r = atoms_.atoms[i].radius;
-    return d2 <= r * r;
   }
 
   bool ball_contains_cell(int i, const Vec3& lo, double side) const {
@@ -371,23 +355,55 @@ class OctreeBuilder {
     return created;
   }
 
+  /// The eight children of a leaf with their sphere lists, in one pass over the parent's
+  /// spheres: per axis, the squared distances from the centre to the lower and upper half (and
+  /// to the farthest face of each half), summed per child. The same floating-point operations
+  /// as a cube-ball distance test and `ball_contains_cell` on each child, so the same decisions.
   void make_children(int c, std::array<OctreeCell, 8>& out) const {
     const OctreeCell& parent = tree_.cells[c];
     const double side = tree_.side(parent.level + 1);
+    double lo[3][2], hi[3][2];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 2; ++b) {
+        lo[a][b] = (2 * parent.ijk[a] + b) * side;
+        hi[a][b] = lo[a][b] + side;
+      }
     for (int k = 0; k < 8; ++k) {
       OctreeCell& child = out[k];
       child.level = parent.level + 1;
       for (int a = 0; a < 3; ++a) child.ijk[a] = 2 * parent.ijk[a] + ((k >> a) & 1);
       child.parent = c;
-      const Vec3 lo = cell_lo(child);
-      for (int i : parent.spheres)
-        if (ball_meets_cell(i, lo, side)) child.spheres.push_back(i);
       child.inside_one_ball = false;
-      for (int i : child.spheres)
-        if (ball_contains_cell(i, lo, side)) {
-          child.inside_one_ball = true;
-          break;
+    }
+    for (int i : parent.spheres) {
+      const Vec3& p = local_[i];
+      const double r = atoms_.atoms[i].radius;
+      const double r2 = r * r;
+      double near[3][2], far[3][2];
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 2; ++b) {
+          const double d = std::max({lo[a][b] - p[a], 0.0, p[a] - hi[a][b]});
+          near[a][b] = d * d;
+          const double e = std::max(std::abs(p[a] - lo[a][b]), std::abs(p[a] - lo[a][b] - side));
+          far[a][b] = e * e;
         }
+      for (int k = 0; k < 8; ++k) {
+        const int b0 = k & 1, b1 = (k >> 1) & 1, b2 = (k >> 2) & 1;
+        double d2 = 0;
+        d2 += near[0][b0];
+        d2 += near[1][b1];
+        d2 += near[2][b2];
+        if (d2 > r2) continue;
+        OctreeCell& child = out[k];
+        child.spheres.push_back(i);
+        if (!child.inside_one_ball) {
+          double e2 = 0;
+          e2 += far[0][b0];
+          e2 += far[1][b1];
+          e2 += far[2][b2];
+          child.inside_one_ball = e2 <= r2;
+        }
+      }
     }
   }
 

@@ -122,6 +122,15 @@ bool ray_sphere(const MedialAtom& s, const Vec3& o, const Vec3& d, double& t0, d
 bool ray_cone(const Cone& k, const Vec3& o, const Vec3& d, double& t0, double& t1) {
   const Vec3 w = o - k.c1;
   const double ot = w.dot(k.u), dt = d.dot(k.u);
+  {
+    // Cheap rejection: the frustum lies in the ball around its axis midpoint through its
+    // rims; a line missing that ball (with slack for rounding) misses the frustum.
+    const double half = (k.t_hi - k.t_lo) / 2, rim = std::max(k.rho_lo, k.rho_hi);
+    const Vec3 wm = w - (k.t_lo + half) * k.u;
+    const double dd = d.squaredNorm(), wd = wm.dot(d);
+    const double miss2 = wm.squaredNorm() - wd * wd / dd, reach2 = half * half + rim * rim;
+    if (miss2 > reach2 * (1 + 1e-9)) return false;
+  }
   const Vec3 op = w - ot * k.u, dp = d - dt * k.u;
   // Slab t_lo <= axial <= t_hi.
   double lo = -kInf, hi = kInf;
@@ -245,17 +254,93 @@ struct TargetShape::Bvh {
   };
   std::vector<Node> nodes;
   std::vector<int> order;
-  std::vector<Box> boxes;
+  std::vector<Box> boxes;  // during build: by primitive id; after: in `order`
 
   /// Over the primitives `ids` (their boxes indexed by id).
   void build(std::vector<Box> primitive_boxes, std::vector<int> ids) {
     boxes = std::move(primitive_boxes);
     order = std::move(ids);
     nodes.reserve(2 * order.size() / 4 + 2);
-    if (!order.empty()) build(0, static_cast<int>(order.size()));
+    if (!order.empty()) build(0, static_cast<int>(order.size()), 0);
+    // From now on boxes[i] is the box of primitive order[i]: a leaf's boxes are contiguous.
+    std::vector<Box> in_order(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) in_order[i] = boxes[order[i]];
+    boxes = std::move(in_order);
   }
 
-  int build(int first, int last) {
+  static double half_area(const Box& b) {
+    const Vec3 e = (b.hi - b.lo).cwiseMax(0.0);
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+  }
+
+  /// Partitions order[first, last) and returns the split point: the binned surface-area
+  /// heuristic over 16 bins of box centres per axis (overlapping ball boxes make median splits
+  /// poor), the median on the longest axis when no bin boundary separates the centres or
+  /// `heuristic` is off.
+  int split(int first, int last, const Box& centres, bool heuristic) {
+    constexpr int kBins = 16;
+    double best_cost = kInf;
+    int best_axis = -1, best_bin = -1;
+    for (int axis = 0; heuristic && axis < 3; ++axis) {
+      const double lo = centres.lo[axis], extent = centres.hi[axis] - lo;
+      if (!(extent > 0)) continue;
+      std::array<Box, kBins> bin_box;
+      std::array<int, kBins> bin_count{};
+      for (int i = first; i < last; ++i) {
+        const Box& b = boxes[order[i]];
+        const int k = bin_of(b, axis, lo, extent, kBins);
+        bin_box[k].grow(b);
+        ++bin_count[k];
+      }
+      std::array<double, kBins> right_cost{};
+      Box acc;
+      int n = 0;
+      for (int k = kBins - 1; k > 0; --k) {
+        acc.grow(bin_box[k]);
+        n += bin_count[k];
+        right_cost[k] = n ? half_area(acc) * n : 0;
+      }
+      acc = Box();
+      n = 0;
+      for (int k = 0; k + 1 < kBins; ++k) {  // left = bins [0, k], right = bins [k + 1, end)
+        acc.grow(bin_box[k]);
+        n += bin_count[k];
+        if (n == 0 || n == last - first) continue;
+        const double cost = half_area(acc) * n + right_cost[k + 1];
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_bin = k;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      const double lo = centres.lo[best_axis], extent = centres.hi[best_axis] - lo;
+      const auto mid = std::stable_partition(order.begin() + first, order.begin() + last, [&](int id) {
+        return bin_of(boxes[id], best_axis, lo, extent, kBins) <= best_bin;
+      });
+      return static_cast<int>(mid - order.begin());
+    }
+    Eigen::Index axis;
+    (centres.hi - centres.lo).maxCoeff(&axis);
+    const int mid = (first + last) / 2;
+    std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + last,
+                     [&](int a, int b) {
+                       const double ca = boxes[a].lo[axis] + boxes[a].hi[axis];
+                       const double cb = boxes[b].lo[axis] + boxes[b].hi[axis];
+                       return ca < cb || (ca == cb && a < b);
+                     });
+    return mid;
+  }
+
+  static int bin_of(const Box& b, int axis, double lo, double extent, int bins) {
+    const double c = (b.lo[axis] + b.hi[axis]) / 2;
+    const int k = static_cast<int>(bins * ((c - lo) / extent));
+    return std::clamp(k, 0, bins - 1);
+  }
+
+  /// Depth stays under 48 + 31 (median splits below 48): the traversal stacks hold 128.
+  int build(int first, int last, int depth) {
     const int id = static_cast<int>(nodes.size());
     nodes.emplace_back();
     Box box, centres;
@@ -270,17 +355,9 @@ struct TargetShape::Bvh {
       nodes[id].count = last - first;
       return id;
     }
-    Eigen::Index axis;
-    (centres.hi - centres.lo).maxCoeff(&axis);
-    const int mid = (first + last) / 2;
-    std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + last,
-                     [&](int a, int b) {
-                       const double ca = boxes[a].lo[axis] + boxes[a].hi[axis];
-                       const double cb = boxes[b].lo[axis] + boxes[b].hi[axis];
-                       return ca < cb || (ca == cb && a < b);
-                     });
-    build(first, mid);
-    const int right = build(mid, last);
+    const int mid = split(first, last, centres, depth < 48);
+    build(first, mid, depth + 1);
+    const int right = build(mid, last, depth + 1);
     nodes[id].right = right;
     return id;
   }
@@ -326,7 +403,7 @@ struct TargetShape::Bvh {
       if (!keep_box(n.box)) continue;
       if (n.right < 0) {
         for (int i = n.first; i < n.first + n.count; ++i)
-          if (keep_box(boxes[order[i]])) visit_primitive(order[i]);
+          if (keep_box(boxes[i])) visit_primitive(order[i]);
       } else {
         stack[top++] = n.right;
         stack[top++] = static_cast<int>(&n - nodes.data()) + 1;
@@ -417,11 +494,13 @@ bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max,
                                    bool& inside) const {
   // One pass over the segment [-t_max, t_max]: every interval, then the decision.
   const Vec3 start = v - t_max * dir;
-  std::vector<std::pair<double, double>> runs;  // in units of dir from v
+  const Vec3 inv = dir.cwiseInverse();
+  thread_local std::vector<std::pair<double, double>> runs;  // in units of dir from v
+  runs.clear();
   bvh_->visit(
       [&](const Box& b) {
         double a = 0, z = 2 * t_max;
-        return b.clip(start, dir.cwiseInverse(), a, z);
+        return b.clip(start, inv, a, z);
       },
       [&](int i) {
         double a, z;
