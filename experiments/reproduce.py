@@ -174,6 +174,9 @@ def figure14_job(build, work):
 
 
 CONE_FILTERS = [0.0, 0.5, 0.8, 0.9, 0.95]
+# (circle-ratio filter, collar limit in rc / 8; 0 = none): every filter without a collar limit,
+# then collar limits around the default (0.9, 1).
+CONE_SETTINGS = [(f, 0) for f in CONE_FILTERS] + [(0.9, 0.5), (0.9, 1), (0.9, 2), (0.0, 1)]
 
 
 def cone_filter_job(build, work, name):
@@ -185,11 +188,12 @@ def cone_filter_job(build, work, name):
     R.run("skeletonize", original, "-o", atoms, *skeleton_args(manifest[name], "topology"))
     info = R.run("models", "info", original, "--json")
     rows = []
-    for f in CONE_FILTERS + [None]:
-        args = ["--cones", "none"] if f is None else ["--cone-filter", f]
+    for setting in CONE_SETTINGS + [None]:
+        args = ["--cones", "none"] if setting is None else ["--cone-filter", setting[0], "--cone-collar", setting[1]]
         a = R.run("evaluate", "atoms", original, atoms, *args, "--samples",
                   max(ATOM_SAMPLES, 2 * info["vertices"] + 1000), "--json")
-        rows.append({"model": name, "cone_filter": "spheres only" if f is None else f, "cones": a["cones"],
+        rows.append({"model": name, "cone_filter": "spheres only" if setting is None else setting[0],
+                     "cone_collar": "" if setting is None else setting[1], "cones": a["cones"],
                      "h_g_o": round(a["hausdorff_pct"], 3), "rms_g_o": round(a["rms_pct"], 3)})
     return rows
 
@@ -436,21 +440,24 @@ def write_results(rows, times, sweep_rows, fig11, fig14, paper, command, elapsed
 
 
 def cone_table(rows, command):
-    cols = ["model", "cone_filter", "cones", "h_g_o", "rms_g_o"]
+    cols = ["model", "cone_filter", "cone_collar", "cones", "h_g_o", "rms_g_o"]
     H.write_csv(os.path.join(H.RESULTS, "cone_filter.csv"), rows, cols)
-    # Mean over models of H(G, O) and RMS per filter: the default is chosen on these.
+    # Mean over models of H(G, O) and RMS per setting: the default is chosen on these.
     summary = []
-    for f in CONE_FILTERS + ["spheres only"]:
-        sel = [r for r in rows if r["cone_filter"] == f]
-        summary.append({"cone_filter": f, "mean_h_g_o": round(sum(r["h_g_o"] for r in sel) / len(sel), 3),
-                        "mean_rms_g_o": round(sum(r["rms_g_o"] for r in sel) / len(sel), 3)})
+    for f, c in CONE_SETTINGS + [("spheres only", "")]:
+        sel = [r for r in rows if r["cone_filter"] == f and r["cone_collar"] == c]
+        summary.append({"cone_filter": f, "cone_collar": c,
+                        "mean_h_g_o": round(sum(r["h_g_o"] for r in sel) / len(sel), 3),
+                        "mean_rms_g_o": round(sum(r["rms_g_o"] for r in sel) / len(sel), 3),
+                        "worst_h_g_o": max(r["h_g_o"] for r in sel)})
     H.write_atomically(os.path.join(H.RESULTS, "cone_filter.md"), "\n".join([
         "# Which cones: H(G, O) against the cone filter", "",
         "Written by `%s`. G = the union of the atoms' spheres and the cones of pairs adjacent in the" % command,
         "regular triangulation whose intersection circle has a radius of at least F times the smaller",
-        "radius (`garb --cone-filter F`); atoms: the documented sampling of each model. `evaluate atoms`",
-        "against the original, in % of its diagonal.", "",
-        H.markdown_table(summary, ["cone_filter", "mean_h_g_o", "mean_rms_g_o"]), "",
+        "radius (`garb --cone-filter F`) and whose lateral surface stands off the crease of its two",
+        "spheres by at most C rc / 8 (`--cone-collar C`, 0: no limit); atoms: the documented sampling",
+        "of each model. `evaluate atoms` against the original, in % of its diagonal.", "",
+        H.markdown_table(summary, ["cone_filter", "cone_collar", "mean_h_g_o", "mean_rms_g_o", "worst_h_g_o"]), "",
         H.markdown_table(rows, cols), ""]))
 
 

@@ -1,6 +1,6 @@
 // evaluate: distances, smoothness and validity checks, timed baselines.
 //   evaluate distance MESH REFERENCE [--samples N] [--seed S] [--faces-only] [--json]
-//   evaluate atoms MESH ATOMS.ma [--cones rt|all|edges|none] [--cone-filter F] [--samples N]
+//   evaluate atoms MESH ATOMS.ma [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C] [--samples N]
 //                  [--seed S] [--diagonal D] [--json]
 //   evaluate normals MESH REFERENCE [--samples N] [--seed S] [--flat-reference] [--json]
 //   evaluate check MESH [--json]
@@ -151,13 +151,15 @@ int evaluate_main(int argc, char** argv) {
   auto* atoms_cmd = app.add_subcommand(
       "atoms", "two-sided distances between MESH and G, the union of the atoms' spheres and cones");
   std::string atoms_file, cones = "rt";
-  double cone_filter = mg::ConeOptions{}.min_circle_ratio, diagonal = 0;
+  double cone_filter = mg::ConeOptions{}.min_circle_ratio, cone_collar = mg::ConeOptions{}.max_collar,
+         diagonal = 0;
   Report atoms_report;
   atoms_cmd->add_option("mesh", mesh_path, "mesh to judge")->required();
   atoms_cmd->add_option("atoms", atoms_file, "medial atoms (.ma, or x y z r lines)")->required();
   atoms_cmd->add_option("--cones", cones, "cone pairs of G: rt, all, edges or none (as garb)")
       ->check(CLI::IsMember({"rt", "all", "edges", "none"}));
   atoms_cmd->add_option("--cone-filter", cone_filter, "as garb --cone-filter")->check(CLI::Range(0.0, 1.0));
+  atoms_cmd->add_option("--cone-collar", cone_collar, "as garb --cone-collar")->check(CLI::NonNegativeNumber);
   atoms_cmd->add_option("--samples", samples, "samples per side (0 = max(1e5, 10 V_mesh))");
   atoms_cmd->add_option("--seed", seed, "random seed of the sampling");
   atoms_cmd->add_option("--diagonal", diagonal,
@@ -292,6 +294,7 @@ int evaluate_main(int argc, char** argv) {
     ev::AtomsDistanceOptions opt;
     opt.cones.source = mg::parse_cone_source(cones);
     opt.cones.min_circle_ratio = cone_filter;
+    opt.cones.max_collar = cone_collar;
     opt.samples = samples;
     opt.seed = seed;
     const ev::AtomsDistance r = ev::atoms_distance(mesh, atoms, opt, mesh_path);
@@ -304,6 +307,7 @@ int evaluate_main(int argc, char** argv) {
     j["cones"] = r.cones;
     j["cone_source"] = cones;
     j["cone_filter"] = cone_filter;
+    j["cone_collar"] = cone_collar;
     j["mesh_samples"] = r.mesh_samples;
     j["g_samples"] = r.g_samples;
     j["g_area_uniform_samples"] = r.g_unbiased;

@@ -37,6 +37,7 @@ TEST(AtomsDistance, FineGarbingOfTwoBallsIsNearZero) {
   const mg::Octree tree = mg::build_octree(s, topt);
   mg::RefineOptions ropt;
   ropt.cones.min_circle_ratio = 0;  // keep the cone of these two balls
+  ropt.cones.max_collar = 0;
   const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s, ropt);
   ev::AtomsDistanceOptions aopt;
   aopt.cones = ropt.cones;

@@ -1,7 +1,7 @@
 // garb: medial surface garbing. Atoms in, closed triangle mesh out.
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
-//        [--no-criterion N ...] [--cones rt|all|edges|none] [--cone-filter F] [--spheres-only]
-//        [--refine K] [--no-dual] [--max-travel T] [--stats FILE.json] [--threads N]
+//        [--no-criterion N ...] [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C] [--spheres-only]
+//        [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N] [--stats FILE.json] [--threads N]
 #include "garbing/atomic_file.h"
 #include "garbing/cli_main.h"
 #include "garbing/coarse_mesh.h"
@@ -58,6 +58,9 @@ int garb_main(int argc, char** argv) {
   app.add_option("--cone-filter", refine.cones.min_circle_ratio,
                  "keep a cone if the intersection circle radius >= F * the smaller radius")
       ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--cone-collar", refine.cones.max_collar,
+                 "keep a cone if it stands off its spheres' crease by <= C * rc / 8 (0: no limit)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--spheres-only", spheres_only, "no cones: G is the union of the spheres");
   app.add_option("--refine", refine.subdivisions, "rounds of 1-to-4 subdivision + migration")
       ->check(CLI::NonNegativeNumber);
@@ -65,6 +68,9 @@ int garb_main(int argc, char** argv) {
   app.add_option("--max-travel", refine.max_travel,
                  "longest migration, in leaf sides, before the closest-point fallback")
       ->check(CLI::PositiveNumber);
+  app.add_option("--repair-rounds", refine.repair_rounds,
+                 "rounds of each fold repair stage (0: no repair, folds are only counted)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   mg::parse_command_line(app, argc, argv);
@@ -160,6 +166,7 @@ int garb_main(int argc, char** argv) {
                {"cones", r.cones},
                {"cone_source", cones},
                {"cone_filter", refine.cones.min_circle_ratio},
+               {"cone_collar", refine.cones.max_collar},
                {"dual", refine.dual},
                {"subdivisions", refine.subdivisions},
                {"vertices_migrated", r.vertices_migrated},
@@ -172,7 +179,8 @@ int garb_main(int argc, char** argv) {
                {"intersecting_pairs_after_repair", r.intersecting_after},
                {"degenerate_after_repair", r.degenerate_after},
                {"repaired_vertices", r.repaired_vertices},
-               {"pull_back_steps", r.pulled_back}};
+               {"pull_back_steps", r.pulled_back},
+               {"left_off_g_after_repair", r.left_off_g}};
     j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
     j["seconds"] = {{"read", t_read},
                     {"octree", t_octree},

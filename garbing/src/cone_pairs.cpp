@@ -62,6 +62,7 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
   validate(atoms);
   if (!(opt.min_circle_ratio >= 0 && opt.min_circle_ratio <= 1))
     throw InvalidInput("cone filter: the minimal circle ratio must be in [0, 1]");
+  if (!(opt.max_collar >= 0)) throw InvalidInput("cone filter: the maximal collar must be >= 0");
   std::vector<std::array<int, 2>> candidates;
   switch (opt.source) {
     case ConeSource::none:
@@ -82,6 +83,14 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
   }
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  // The collar limit in model units: max_collar times rc / 8, the automatic octree's leaf
+  // side bound (rc = (rmin + rmax) / 2, from the atoms alone).
+  double rmin = INFINITY, rmax = 0;
+  for (const auto& a : atoms.atoms) {
+    rmin = std::min(rmin, a.radius);
+    rmax = std::max(rmax, a.radius);
+  }
+  const double collar_limit = opt.max_collar > 0 ? opt.max_collar * (rmin + rmax) / 16 : INFINITY;
   std::vector<std::array<int, 2>> pairs;
   for (const auto& [i, j] : candidates) {
     const MedialAtom& a = atoms.atoms[i];
@@ -92,6 +101,12 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
     const double x = (L * L + a.radius * a.radius - b.radius * b.radius) / (2 * L);
     const double h = std::sqrt(std::max(0.0, a.radius * a.radius - x * x));
     if (h < opt.min_circle_ratio * std::min(a.radius, b.radius)) continue;
+    // Collar: how far the lateral surface stands off the crease where the two spheres meet
+    // (in the axial section the lateral line is x sin(phi) + y cos(phi) = r1, the crease is
+    // the point (x, h)).
+    const double sin_phi = (a.radius - b.radius) / L;
+    const double cos_phi = std::sqrt(std::max(0.0, 1 - sin_phi * sin_phi));
+    if (a.radius - (x * sin_phi + h * cos_phi) > collar_limit) continue;
     pairs.push_back({i, j});
   }
   return pairs;

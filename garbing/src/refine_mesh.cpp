@@ -341,6 +341,7 @@ class Refiner {
   ///    migration path, halving their step each round;
   /// 3. if some are still folded: they (and, round by round, their neighbours) return to their
   ///    starting point, the fold-free dual of M1.
+  /// The vertices stages 2-3 moved are off G; they are counted (`left_off_g`).
   void repair(const std::vector<std::array<int, 3>>& triangles) {
     const auto t0 = Clock::now();
     TriangleDefects d = find_triangle_defects(soup_of(triangles));
@@ -402,6 +403,7 @@ class Refiner {
       }
       redetect(grown);
     }
+    std::vector<char> off_g(position_.size(), 0);
     const std::vector<Vec3> target = position_;
     std::vector<double> step(position_.size(), 1.0);
     for (int round = 0; round < opt_.repair_rounds; ++round) {
@@ -410,6 +412,7 @@ class Refiner {
       for (int v : involved) {
         step[v] /= 2;
         moved[v] = 1;
+        off_g[v] = 1;
         position_[v] = start_[v] + step[v] * (target[v] - start_[v]);
         ++stats_.pulled_back;
       }
@@ -429,10 +432,15 @@ class Refiner {
       for (int v : involved) {
         position_[v] = start_[v];
         moved[v] = 1;
+        off_g[v] = 1;
         ++stats_.pulled_back;
       }
       redetect(involved);
     }
+    // Tried: moving these back to the closest point of G where that folds nothing; on hand's
+    // vertex poles 2 of 3,517 could move (the rest lie in cones whose nearest surface point
+    // belongs to another sheet), so they stay where the fold-free stages put them.
+    stats_.left_off_g += static_cast<std::size_t>(std::count(off_g.begin(), off_g.end(), 1));
     stats_.intersecting_after = d.intersecting_pairs.size();
     stats_.degenerate_after = d.degenerate_faces.size();
     stats_.repaired_vertices += static_cast<std::size_t>(std::count(moved.begin(), moved.end(), 1));

@@ -52,6 +52,7 @@ TEST(RefineMesh, TwoOverlappingSpheresLandExactlyOnG) {
   const auto s = atoms({{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.2, 0.3, -0.2), 0.7}});
   mg::RefineOptions opt;
   opt.cones.min_circle_ratio = 0;  // circle radius 0.80 of the smaller ball: keep the cone
+  opt.cones.max_collar = 0;        // and its collar (2.4 rc / 8)
   const auto pairs = mg::cone_pairs(s, opt.cones);
   ASSERT_EQ(pairs.size(), 1u);
   const mg::TargetShape shape(s, pairs);

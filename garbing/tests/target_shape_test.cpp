@@ -95,6 +95,7 @@ TEST(ConePairs, SourcesAndFilter) {
   s.edges = {{1, 0}, {2, 3}, {0, 4}};
   mg::ConeOptions opt;
   opt.min_circle_ratio = 0;
+  opt.max_collar = 0;  // no collar limit here (see CollarLimitMatchesTheConeGeometry)
   opt.source = mg::ConeSource::all_pairs;
   const auto all = mg::cone_pairs(s, opt);
   // 0-1, 1-2, 2-3 and 0-2 (distance 3 > 2: no), 1-4 (contains? no: 1.4 < 1.2? no) ...
@@ -119,6 +120,34 @@ TEST(ConePairs, SourcesAndFilter) {
   EXPECT_EQ(std::find(kept.begin(), kept.end(), std::array<int, 2>{2, 3}), kept.end());
   EXPECT_NE(std::find(kept.begin(), kept.end(), std::array<int, 2>{0, 1}), kept.end());
   EXPECT_THROW(mg::parse_cone_source("some"), mg::InvalidInput);
+}
+
+TEST(ConePairs, CollarLimitMatchesTheConeGeometry) {
+  // Two balls r1 = 1, r2 = 0.6 at L = 0.9 (circle radius 0.59: ratio 0.98, kept by the 0.9
+  // filter). The collar, measured on the cone itself: the distance from a point of the circle
+  // where the spheres meet to the lateral surface, (R(x) - h) cos(phi).
+  const mg::MedialAtom a{Vector3d(0, 0, 0), 1.0}, b{Vector3d(0.9, 0, 0), 0.6};
+  const mg::Cone cone = mg::make_cone(a, b, 0, 1);
+  const double L = 0.9, x = (L * L + 1 - 0.36) / (2 * L), h = std::sqrt(1 - x * x);
+  const double collar = ((cone.r1 - x * cone.sin_phi) / cone.cos_phi - h) * cone.cos_phi;
+  ASSERT_GT(collar, 0.01);
+  // The collar must lie on the lateral surface's inner side: the crease point is inside the cone.
+  const mg::MedialSurface s = atoms({a, b});
+  mg::TargetShape shape(s, {{0, 1}});
+  EXPECT_TRUE(shape.primitive_contains(1 + 1, Vector3d(x, h, 0), 0.5 * collar));  // cone id 2
+  EXPECT_FALSE(shape.primitive_contains(1 + 1, Vector3d(x, h, 0), 1.5 * collar));
+  const double unit = (1.0 + 0.6) / 2 / 8;  // rc / 8
+  mg::ConeOptions opt;
+  opt.source = mg::ConeSource::all_pairs;
+  opt.max_collar = collar / unit * (1 + 1e-9);
+  EXPECT_EQ(mg::cone_pairs(s, opt).size(), 1u);
+  opt.max_collar = collar / unit * (1 - 1e-9);
+  EXPECT_TRUE(mg::cone_pairs(s, opt).empty());
+  opt.max_collar = 0;  // no limit
+  EXPECT_EQ(mg::cone_pairs(s, opt).size(), 1u);
+  opt.max_collar = -1;
+  EXPECT_THROW(mg::cone_pairs(s, opt), mg::InvalidInput);
+  EXPECT_EQ(mg::ConeOptions{}.max_collar, 1.0);  // the default the cone study chose
 }
 
 }  // namespace
