@@ -175,7 +175,9 @@ class Refiner {
       }
       if (reach >= opt_.max_travel) break;
     }
-    const bool anywhere = inside ? shape_->run_end(v, -dir, 1e300, t) : shape_->first_entry(v, dir, 1e300, t);
+    // Only the fallback's kind: from inside, the run containing v ends somewhere (the union is
+    // bounded), so G lies beyond the reach; from outside, the line may miss the union.
+    const bool anywhere = inside || shape_->first_entry(v, dir, 1e300, t);
     out = shape_->closest_point(v);
     return anywhere ? Outcome::too_far : Outcome::missed;
   }

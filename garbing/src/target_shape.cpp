@@ -682,7 +682,13 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
     }
   }
   if (std::isfinite(best)) return out;
-  for (const Vec3& d : probe_directions()) {
+  // Exits along probe directions, the nearest candidate's direction first: its exit bounds the
+  // others, which then stop as soon as their run passes it.
+  std::vector<Vec3> probes;
+  probes.reserve(probe_directions().size() + 1);
+  if (!around.empty() && around.front().distance > 0) probes.push_back((around.front().point - p).normalized());
+  probes.insert(probes.end(), probe_directions().begin(), probe_directions().end());
+  for (const Vec3& d : probes) {
     double t;
     if (run_end(p, d, std::isfinite(best) ? best : 1e300, t) && t < best) {
       best = t;
