@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """CTest regression (label `regression`): for every reference model of Table 1, the garbing of
 its paper atoms (vertex poles) is a closed, oriented 2-manifold with the union of the atoms'
-topology and no intersecting or degenerate triangles, and its Hausdorff and RMS distances to the
-original stay under the bounds experiments/reproduce.py wrote in regression_thresholds.json.
+topology (M1's components and Euler characteristic too) and no intersecting or degenerate
+triangles, and its Hausdorff and RMS distances to the original stay under the bounds experiments/reproduce.py wrote in regression_thresholds.json.
 It also reports (NOTE lines, not failures) issue 7's accuracy targets: H(M2, G) within one leaf
 side at depth d, and H(M2, O) <= H(G, O) + 0.25% of the diagonal.
 
@@ -37,6 +37,10 @@ def main(build, name):
     if not (check["closed"] and check["manifold"] and check["oriented"]):
         problems.append("M2 is not a closed oriented 2-manifold")
     union = sk["union"]
+    m1 = g["m1"]
+    if (m1["components"], m1["euler"]) != (union["components"], union["euler"]):
+        problems.append("M1 has %d component(s), Euler characteristic %d; the union of the atoms %d, %d" % (
+            m1["components"], m1["euler"], union["components"], union["euler"]))
     if (check["components"], check["euler"]) != (union["components"], union["euler"]):
         problems.append("M2 has %d component(s), Euler characteristic %d; the union of the atoms %d, %d" % (
             check["components"], check["euler"], union["components"], union["euler"]))
