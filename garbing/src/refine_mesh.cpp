@@ -346,7 +346,8 @@ class Refiner {
   /// The vertices stages 2-3 moved are off G; they are counted (`left_off_g`).
   void repair(const std::vector<std::array<int, 3>>& triangles) {
     const auto t0 = Clock::now();
-    TriangleDefects d = find_triangle_defects(soup_of(triangles));
+    PolygonSoup soup = soup_of(triangles);  // faces fixed; points refreshed before each check
+    TriangleDefects d = find_triangle_defects(soup);
     stats_.intersecting_before += d.intersecting_pairs.size();
     stats_.degenerate_before += d.degenerate_faces.size();
     stats_.intersecting_after = d.intersecting_pairs.size();
@@ -376,7 +377,8 @@ class Refiner {
       std::sort(dirty.begin(), dirty.end());
       dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
       auto is_dirty = [&](int f) { return std::binary_search(dirty.begin(), dirty.end(), f); };
-      TriangleDefects local = find_triangle_defects(soup_of(triangles), dirty);
+      soup.points = position_;
+      TriangleDefects local = find_triangle_defects(soup, dirty);
       for (const auto& p : d.intersecting_pairs)
         if (!is_dirty(p[0]) && !is_dirty(p[1])) local.intersecting_pairs.push_back(p);
       for (int f : d.degenerate_faces)

@@ -6,6 +6,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 
@@ -80,18 +81,27 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
     return CGAL::do_intersect(opposite_f, tg) || CGAL::do_intersect(opposite_g, tf);
   };
 
+  // Candidate pairs from the boxes (sequential), then the exact tests in parallel; the pairs
+  // come out sorted whatever the thread count.
+  std::vector<std::array<int, 2>> candidates;
   auto report = [&](const Box& x, const Box& y) {
     if (x.info() == y.info()) return;
-    const int f = std::min(x.info(), y.info()), g = std::max(x.info(), y.info());
-    if (intersect(f, g)) out.intersecting_pairs.push_back({f, g});
+    candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
   };
   if (subset)
     CGAL::box_intersection_d(chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), report);
   else
     CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), report);
-  std::sort(out.intersecting_pairs.begin(), out.intersecting_pairs.end());
-  out.intersecting_pairs.erase(std::unique(out.intersecting_pairs.begin(), out.intersecting_pairs.end()),
-                               out.intersecting_pairs.end());
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  std::vector<char> hit(candidates.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        hit[i] = intersect(candidates[i][0], candidates[i][1]) ? 1 : 0;
+                    });
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (hit[i]) out.intersecting_pairs.push_back(candidates[i]);
   return out;
 }
 
