@@ -84,13 +84,8 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   // The collar limit in model units: max_collar times rc / 8, the automatic octree's leaf
-  // side bound (rc = (rmin + rmax) / 2, from the atoms alone).
-  double rmin = INFINITY, rmax = 0;
-  for (const auto& a : atoms.atoms) {
-    rmin = std::min(rmin, a.radius);
-    rmax = std::max(rmax, a.radius);
-  }
-  const double collar_limit = opt.max_collar > 0 ? opt.max_collar * (rmin + rmax) / 16 : INFINITY;
+  // side bound (from the atoms alone).
+  const double collar_limit = opt.max_collar > 0 ? opt.max_collar * characteristic_radius(atoms) / 8 : INFINITY;
   std::vector<std::array<int, 2>> pairs;
   for (const auto& [i, j] : candidates) {
     const MedialAtom& a = atoms.atoms[i];

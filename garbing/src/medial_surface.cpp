@@ -3,6 +3,7 @@
 #include "garbing/atomic_file.h"
 #include "garbing/errors.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -173,6 +174,15 @@ class Parser {
 };
 
 }  // namespace
+
+double characteristic_radius(const MedialSurface& s) {
+  double rmin = INFINITY, rmax = 0;
+  for (const auto& a : s.atoms) {
+    rmin = std::min(rmin, a.radius);
+    rmax = std::max(rmax, a.radius);
+  }
+  return (rmin + rmax) / 2;
+}
 
 void validate(const MedialSurface& s) {
   if (s.atoms.empty()) throw InvalidInput("medial surface has no atoms");

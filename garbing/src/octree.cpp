@@ -174,20 +174,17 @@ class OctreeBuilder {
     tree_.max_depth = opt_.max_depth;
     local_.reserve(atoms_.atoms.size());
     Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-    double rmin = INFINITY, rmax = 0;
     for (const auto& a : atoms_.atoms) {
       const Vec3 p = tree_.axes.transpose() * a.centre;
       local_.push_back(p);
       lo = lo.cwiseMin(p - Vec3::Constant(a.radius));
       hi = hi.cwiseMax(p + Vec3::Constant(a.radius));
-      rmin = std::min(rmin, a.radius);
-      rmax = std::max(rmax, a.radius);
     }
     tree_.root_side = (hi - lo).maxCoeff();
     const Vec3 corner = (lo + hi) / 2 - Vec3::Constant(tree_.root_side / 2);
     for (Vec3& p : local_) p -= corner;
     tree_.origin = tree_.axes * corner;
-    tree_.rc = (rmin + rmax) / 2;
+    tree_.rc = characteristic_radius(atoms_);
     if (opt_.min_depth > 0) {
       tree_.min_depth = opt_.min_depth;
     } else {

@@ -37,6 +37,9 @@ Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) 
   c.rho_lo = first.radius * c.cos_phi;
   c.t_hi = c.length + second.radius * c.sin_phi;
   c.rho_hi = second.radius * c.cos_phi;
+  const double half = (c.t_hi - c.t_lo) / 2, rim = std::max(c.rho_lo, c.rho_hi);
+  c.bound_centre = c.c1 + (c.t_lo + half) * c.u;
+  c.bound_radius2 = half * half + rim * rim;
   return c;
 }
 
@@ -123,13 +126,11 @@ bool ray_cone(const Cone& k, const Vec3& o, const Vec3& d, double& t0, double& t
   const Vec3 w = o - k.c1;
   const double ot = w.dot(k.u), dt = d.dot(k.u);
   {
-    // Cheap rejection: the frustum lies in the ball around its axis midpoint through its
-    // rims; a line missing that ball (with slack for rounding) misses the frustum.
-    const double half = (k.t_hi - k.t_lo) / 2, rim = std::max(k.rho_lo, k.rho_hi);
-    const Vec3 wm = w - (k.t_lo + half) * k.u;
-    const double dd = d.squaredNorm(), wd = wm.dot(d);
-    const double miss2 = wm.squaredNorm() - wd * wd / dd, reach2 = half * half + rim * rim;
-    if (miss2 > reach2 * (1 + 1e-9)) return false;
+    // Cheap rejection: a line missing the frustum's bounding ball (with slack for rounding)
+    // misses the frustum.
+    const Vec3 wm = o - k.bound_centre;
+    const double wd = wm.dot(d);
+    if (wm.squaredNorm() - wd * wd / d.squaredNorm() > k.bound_radius2 * (1 + 1e-9)) return false;
   }
   const Vec3 op = w - ot * k.u, dp = d - dt * k.u;
   // Slab t_lo <= axial <= t_hi.
@@ -684,17 +685,15 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
   if (std::isfinite(best)) return out;
   // Exits along probe directions, the nearest candidate's direction first: its exit bounds the
   // others, which then stop as soon as their run passes it.
-  std::vector<Vec3> probes;
-  probes.reserve(probe_directions().size() + 1);
-  if (!around.empty() && around.front().distance > 0) probes.push_back((around.front().point - p).normalized());
-  probes.insert(probes.end(), probe_directions().begin(), probe_directions().end());
-  for (const Vec3& d : probes) {
+  auto probe = [&](const Vec3& d) {
     double t;
     if (run_end(p, d, std::isfinite(best) ? best : 1e300, t) && t < best) {
       best = t;
       out = p + t * d;
     }
-  }
+  };
+  if (!around.empty() && around.front().distance > 0) probe((around.front().point - p).normalized());
+  for (const Vec3& d : probe_directions()) probe(d);
   return out;
 }
 

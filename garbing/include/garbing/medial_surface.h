@@ -31,6 +31,10 @@ struct MedialSurface {
 /// @throws InvalidInput naming the first offending atom, edge or face (0-based index).
 void validate(const MedialSurface& s);
 
+/// The characteristic radius rc = (rmin + rmax) / 2 of the atoms (paper section 3.1): the
+/// automatic octree depth makes leaves <= rc / 8. @pre s has atoms
+double characteristic_radius(const MedialSurface& s);
+
 /// Parses a medial surface from text. Two formats, told apart by the first significant line:
 /// - `.ma` (Q-MAT and successors): a header `nv ne nf`, then `v x y z r`, `e i j`, `f i j k`
 ///   lines (0-based indices, any order of v/e/f lines);

@@ -59,6 +59,10 @@ struct Cone {
   double sin_phi = 0, cos_phi = 1;  ///< sin(phi) = (r1 - r2) / L
   double t_lo = 0, t_hi = 0;        ///< axial range of the lateral surface
   double rho_lo = 0, rho_hi = 0;    ///< its radius at t_lo and t_hi
+  /// A ball holding the frustum: centred on the axis midway between t_lo and t_hi, through
+  /// its rims (squared radius); a cheap rejection for ray tests.
+  Eigen::Vector3d bound_centre = Eigen::Vector3d::Zero();
+  double bound_radius2 = 0;
 };
 
 /// Builds the cone of atoms a and b. @pre the balls intersect and neither contains the other
