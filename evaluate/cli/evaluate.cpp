@@ -126,7 +126,7 @@ int evaluate_main(int argc, char** argv) {
   app.fallthrough();
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
 
   // distance
   auto* distance = app.add_subcommand(
@@ -159,12 +159,12 @@ int evaluate_main(int argc, char** argv) {
   atoms_cmd->add_option("--cones", cones, "cone pairs of G: rt, all, edges or none (as garb)")
       ->check(CLI::IsMember({"rt", "all", "edges", "none"}));
   atoms_cmd->add_option("--cone-filter", cone_filter, "as garb --cone-filter")->check(CLI::Range(0.0, 1.0));
-  atoms_cmd->add_option("--cone-collar", cone_collar, "as garb --cone-collar")->check(CLI::NonNegativeNumber);
+  atoms_cmd->add_option("--cone-collar", cone_collar, "as garb --cone-collar")->check(mg::NonNegative);
   atoms_cmd->add_option("--samples", samples, "samples per side (0 = max(1e5, 10 V_mesh))");
   atoms_cmd->add_option("--seed", seed, "random seed of the sampling");
   atoms_cmd->add_option("--diagonal", diagonal,
                         "diagonal for the percentages, model units (0 = MESH's bounding box)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   atoms_report.add_options(atoms_cmd);
 
   // normals
@@ -197,7 +197,7 @@ int evaluate_main(int argc, char** argv) {
     sub->add_option("input", atoms_path, "medial atoms (.ma, or x y z r lines)")->required();
     sub->add_option("-o,--output", output, "output mesh (.off .obj .ply .stl)")->required();
     sub->add_option("--repeat", repeat, "time the algorithm over K runs (min, median, max)")
-        ->check(CLI::PositiveNumber);
+        ->check(mg::Positive);
     return sub;
   };
   auto* skin = add_baseline("skin", "CGAL skin surface of the atoms (make_skin_surface_mesh_3)");

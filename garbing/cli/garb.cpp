@@ -45,7 +45,7 @@ int garb_main(int argc, char** argv) {
   app.add_option("-o,--output", output, "output mesh M2 (.off .obj .ply .stl)")->required();
   app.add_option("--m1", m1_path, "also write the coarse mesh M1 here");
   app.add_option("--min-depth", opt.min_depth, "minimal active depth d (0 = automatic: side <= rc/8)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   app.add_option("--max-depth", opt.max_depth, "safety stop on the octree depth")
       ->check(CLI::Range(1, 20));
   app.add_option("--no-criterion", off, "switch a subdivision criterion off (1-4, repeatable)")
@@ -60,19 +60,19 @@ int garb_main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--cone-collar", refine.cones.max_collar,
                  "keep a cone if it stands off its spheres' crease by <= C * rc / 8 (0: no limit)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   app.add_flag("--spheres-only", spheres_only, "no cones: G is the union of the spheres");
   app.add_option("--refine", refine.subdivisions, "rounds of 1-to-4 subdivision + migration")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   app.add_flag("--no-dual", no_dual, "migrate M1 itself, triangulated (ablation)");
   app.add_option("--max-travel", refine.max_travel,
                  "longest migration, in leaf sides, before the closest-point fallback")
-      ->check(CLI::PositiveNumber);
+      ->check(mg::Positive);
   app.add_option("--repair-rounds", refine.repair_rounds,
                  "rounds of each fold repair stage (0: no repair, folds are only counted)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   app.add_option("--stats", stats_path, "write statistics as JSON");
-  app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(mg::NonNegative);
   mg::parse_command_line(app, argc, argv);
 
   std::vector<std::string> inputs = {input};

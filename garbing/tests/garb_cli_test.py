@@ -89,6 +89,15 @@ class GarbCli(unittest.TestCase):
         r = run(self.ma, "-o", self.path("m.off"), "--no-criterion", "5")
         self.assert_refused(r, 2, "--no-criterion", [self.path("m.off")])
 
+    def test_out_of_range_numbers(self):
+        for option, value, message in (("--cone-collar", "-1", "--cone-collar: must be >= 0, not -1"),
+                                       ("--repair-rounds", "-2", "--repair-rounds: must be >= 0, not -2"),
+                                       ("--max-travel", "0", "--max-travel: must be > 0, not 0"),
+                                       ("--max-travel", "nan", "--max-travel: must be > 0, not nan"),
+                                       ("--refine", "x", "--refine: 'x' is not a number")):
+            r = run(self.ma, "-o", self.path("m.off"), option, value)
+            self.assert_refused(r, 2, message, [self.path("m.off")])
+
     def test_output_never_overwrites_the_input(self):
         r = run(self.ma, "-o", self.ma)
         self.assertEqual(r.returncode, 2)

@@ -64,7 +64,7 @@ int render_main(int argc, char** argv) {
                  "anti-aliasing threshold (POV-Ray +A, method 2, no jitter); 0 = off")
       ->check(CLI::Range(0.0, 3.0));
   app.add_option("--threads", povray.threads, "POV-Ray threads (0 = every core)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   app.add_option("--povray", povray.executable, "POV-Ray executable (name on PATH, or a path)");
   mg::parse_command_line(app, argc, argv);
 

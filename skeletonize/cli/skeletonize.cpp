@@ -105,7 +105,7 @@ int skeletonize_main(int argc, char** argv) {
   app.add_option("--merge-tol", opt.merge_tol,
                  "poles closer than T/2 are one atom; balls inside another up to T/2 are dropped "
                  "(model units; default 1e-3 of the bounding-box diagonal)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   app.add_flag("--clamp-radius", opt.clamp_radius,
                "radius = distance from the centre to the mesh (no ball leaves the object)");
   app.add_option("--drop-isolated", opt.isolated_fraction,
@@ -116,7 +116,7 @@ int skeletonize_main(int argc, char** argv) {
                "write the regular triangulation's edges and triangles inside the object");
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(mg::NonNegative);
   mg::parse_command_line(app, argc, argv);
 
   parse_samples(samples, opt);

@@ -8,10 +8,36 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <exception>
 #include <iostream>
+#include <string>
 
 namespace mg {
+
+namespace detail {
+inline CLI::Validator number_at_least(double least, bool strict, const char* what) {
+  return CLI::Validator(
+      [least, strict, what](std::string& text) -> std::string {
+        double x = 0;
+        try {
+          std::size_t used = 0;
+          x = std::stod(text, &used);
+          if (used != text.size()) return "'" + text + "' is not a number";
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        const bool ok = std::isfinite(x) && (strict ? x > least : x >= least);
+        if (!ok) return "must be " + std::string(what) + ", not " + text;
+        return {};
+      },
+      what);
+}
+}  // namespace detail
+
+/// Option checks with one-line messages (CLI11's own print the largest double as a bound).
+inline const CLI::Validator NonNegative = detail::number_at_least(0, false, ">= 0");
+inline const CLI::Validator Positive = detail::number_at_least(0, true, "> 0");
 
 template <class Body>
 int run_cli(const char* program, Body&& body) {
