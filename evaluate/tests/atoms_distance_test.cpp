@@ -34,13 +34,12 @@ TEST(AtomsDistance, FineGarbingOfTwoBallsIsNearZero) {
   s.atoms = {{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.2, 0.3, -0.2), 0.7}};
   mg::OctreeOptions topt;
   topt.min_depth = 6;
+  topt.cones.min_circle_ratio = 0;  // keep the cone of these two balls
+  topt.cones.max_collar = 0;
   const mg::Octree tree = mg::build_octree(s, topt);
-  mg::RefineOptions ropt;
-  ropt.cones.min_circle_ratio = 0;  // keep the cone of these two balls
-  ropt.cones.max_collar = 0;
-  const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s, ropt);
+  const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s);
   ev::AtomsDistanceOptions aopt;
-  aopt.cones = ropt.cones;
+  aopt.cones = topt.cones;
   const auto r = ev::atoms_distance(mg::soup_from_mesh(m2.mesh), s, aopt, "m2");
   EXPECT_LT(r.distance.hausdorff, 2e-3 * r.diagonal);  // chordal error of a leaf-size mesh
   EXPECT_LT(r.distance.rms, 2e-4 * r.diagonal);

@@ -55,10 +55,10 @@ int garb_main(int argc, char** argv) {
   bool spheres_only = false, no_dual = false;
   app.add_option("--cones", cones, "cone pairs: rt (regular triangulation), all, edges (.ma), none")
       ->check(CLI::IsMember({"rt", "all", "edges", "none"}));
-  app.add_option("--cone-filter", refine.cones.min_circle_ratio,
+  app.add_option("--cone-filter", opt.cones.min_circle_ratio,
                  "keep a cone if the intersection circle radius >= F * the smaller radius")
       ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--cone-collar", refine.cones.max_collar,
+  app.add_option("--cone-collar", opt.cones.max_collar,
                  "keep a cone if it stands off its spheres' crease by <= C * rc / 8 (0: no limit)")
       ->check(mg::NonNegative);
   app.add_flag("--spheres-only", spheres_only, "no cones: G is the union of the spheres");
@@ -86,7 +86,7 @@ int garb_main(int argc, char** argv) {
   }
   if (!stats_path.empty()) mg::check_output_path(stats_path, inputs);
   for (int k : off) opt.criteria[k - 1] = false;
-  refine.cones.source = spheres_only ? mg::ConeSource::none : mg::parse_cone_source(cones);
+  opt.cones.source = spheres_only ? mg::ConeSource::none : mg::parse_cone_source(cones);
   refine.dual = !no_dual;
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0)
@@ -121,11 +121,12 @@ int garb_main(int argc, char** argv) {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     std::map<int, long> per_level, active_per_level;
-    long active = 0;
+    long active = 0, crease_only = 0;
     for (int c : tree.leaves) {
       ++per_level[tree.cells[c].level];
       if (tree.cells[c].is_active()) {
         ++active;
+        if (tree.cells[c].spheres.empty()) ++crease_only;
         ++active_per_level[tree.cells[c].level];
       }
     }
@@ -151,6 +152,7 @@ int garb_main(int argc, char** argv) {
     j["leaves_per_level"] = levels;
     j["leaves"] = tree.leaves.size();
     j["active_leaves"] = active;
+    j["crease_leaves"] = crease_only;  // active through a cone's crease fill only
     j["boundary_leaves"] = owners.size();
     j["m1"] = {{"vertices", m1.mesh.n_vertices()}, {"faces", m1.mesh.n_faces()},
                {"components", topo.components},   {"euler", topo.euler},
@@ -165,8 +167,8 @@ int garb_main(int argc, char** argv) {
                {"oriented", topo2.oriented},
                {"cones", r.cones},
                {"cone_source", cones},
-               {"cone_filter", refine.cones.min_circle_ratio},
-               {"cone_collar", refine.cones.max_collar},
+               {"cone_filter", opt.cones.min_circle_ratio},
+               {"cone_collar", opt.cones.max_collar},
                {"dual", refine.dual},
                {"subdivisions", refine.subdivisions},
                {"vertices_migrated", r.vertices_migrated},

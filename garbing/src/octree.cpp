@@ -118,6 +118,126 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
+/// The solid of a cone: the convex hull of its two balls, which is the union of the balls
+/// B(c(t), r(t)) with c and r linear in t in [0, 1] (the hull of two convex sets is the union
+/// of their Minkowski combinations). Every function of t below is convex.
+struct Hull {
+  Vec3 c1, d;          ///< first centre; second centre - first
+  double r1 = 0, dr = 0;  ///< first radius; second radius - first
+  double length = 0, sin_phi = 0, cos_phi = 1;  ///< |d|; (r1 - r2) / |d|; sqrt(1 - sin^2)
+  double lipschitz = 0;  ///< |d| + |dr|: bounds the slope in t of every function below
+  /// The crease: the circle where the two spheres meet (axial coordinate x0 from c1, radius
+  /// rho0). The part of the hull outside both balls lies within `reach` of it: in the profile
+  /// plane it is inside the triangle of the crease point and the two rims of the cone.
+  double x0 = 0, rho0 = 0, reach = 0;
+  Vec3 centre(double t) const { return c1 + t * d; }
+  double radius(double t) const { return r1 + t * dr; }
+};
+
+Hull make_hull(const Vec3& c1, double r1, const Vec3& c2, double r2) {
+  Hull h;
+  h.c1 = c1;
+  h.d = c2 - c1;
+  h.r1 = r1;
+  h.dr = r2 - r1;
+  h.length = h.d.norm();
+  h.sin_phi = (r1 - r2) / h.length;
+  h.cos_phi = std::sqrt(std::max(0.0, 1 - h.sin_phi * h.sin_phi));
+  h.lipschitz = h.length + std::abs(h.dr);
+  const double L = h.length;
+  h.x0 = (L * L + r1 * r1 - r2 * r2) / (2 * L);
+  h.rho0 = std::sqrt(std::max(0.0, r1 * r1 - h.x0 * h.x0));
+  const double rim1x = r1 * h.sin_phi, rim1y = r1 * h.cos_phi;
+  const double rim2x = L + r2 * h.sin_phi, rim2y = r2 * h.cos_phi;
+  h.reach = std::sqrt(std::max((rim1x - h.x0) * (rim1x - h.x0) + (rim1y - h.rho0) * (rim1y - h.rho0),
+                               (rim2x - h.x0) * (rim2x - h.x0) + (rim2y - h.rho0) * (rim2y - h.rho0)));
+  return h;
+}
+
+/// min over t of |p - c(t)| - r(t): the distance from p to the hull when p is outside it,
+/// <= 0 exactly when p is inside. Closed form: the stationary t has the foot of p on the axis
+/// ahead of c(t) by tan(phi) times p's distance from the axis; clamped to [0, 1].
+double hull_distance(const Hull& h, const Vec3& p) {
+  const Vec3 q = p - h.c1;
+  const double x = q.dot(h.d) / h.length;  // along the axis
+  const double y = std::sqrt(std::max(0.0, q.squaredNorm() - x * x));
+  double t = h.cos_phi > 0 ? (x - h.sin_phi * y / h.cos_phi) / h.length : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  return (p - h.centre(t)).norm() - h.radius(t);
+}
+
+/// Whether a convex function f on [0, 1], its slope bounded by `lipschitz`, reaches <= 0:
+/// golden section that stops as soon as a sample is <= 0 (yes) or the bound from the
+/// bracket, min sample - lipschitz * width, is > 0 (no); a width of 1e-9 counts as yes.
+template <class F>
+bool convex_reaches_zero(const F& f, double lipschitz) {
+  constexpr double g = 0.6180339887498949;
+  double a = 0, b = 1;
+  double x1 = b - g * (b - a), x2 = a + g * (b - a);
+  double f1 = f(x1), f2 = f(x2);
+  const double f0 = f(0.0), fe = f(1.0);
+  double best = std::min({f0, fe, f1, f2});
+  // The minimum lies in [0, 1]; the bound needs the bracket that holds it.
+  while (best > 0) {
+    if (best - lipschitz * (b - a) > 0) return false;
+    if (b - a <= 1e-9) return true;
+    if (f1 <= f2) {
+      b = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = b - g * (b - a);
+      f1 = f(x1);
+      best = std::min(best, f1);
+    } else {
+      a = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = a + g * (b - a);
+      f2 = f(x2);
+      best = std::min(best, f2);
+    }
+  }
+  return true;
+}
+
+double box_distance(const Vec3& lo, double side, const Vec3& p) {
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double d = std::max({lo[a] - p[a], 0.0, p[a] - lo[a] - side});
+    d2 += d * d;
+  }
+  return std::sqrt(d2);
+}
+
+/// False when the cube [lo, lo + side] is too far from the crease to meet the part of the
+/// hull outside the balls.
+bool near_crease(const Hull& h, const Vec3& lo, double side) {
+  const Vec3 q = lo + Vec3::Constant(side / 2) - h.c1;
+  const double x = q.dot(h.d) / h.length;
+  const double y = std::sqrt(std::max(0.0, q.squaredNorm() - x * x));
+  const double bound = h.reach + side * (std::sqrt(3.0) / 2);
+  return (x - h.x0) * (x - h.x0) + (y - h.rho0) * (y - h.rho0) <= bound * bound;
+}
+
+/// Whether the closed cube [lo, lo + side], which meets neither of the two balls, meets the
+/// hull (up to 1e-9 of its slope bound, counted as meeting).
+bool hull_meets_cube_outside_balls(const Hull& h, const Vec3& lo, double side) {
+  if (!near_crease(h, lo, side)) return false;
+  const Vec3 centre = lo + Vec3::Constant(side / 2);
+  const double from_centre = hull_distance(h, centre);
+  if (from_centre <= side / 2) return true;                      // inscribed ball
+  if (from_centre > side * (std::sqrt(3.0) / 2)) return false;   // circumscribed ball
+  return convex_reaches_zero(
+      [&](double t) { return box_distance(lo, side, h.centre(t)) - h.radius(t); }, h.lipschitz);
+}
+
+/// Whether two hulls meet: min over (s, t) of |c(s) - c'(t)| - r(s) - r'(t) <= 0, jointly
+/// convex, its inner minimum in closed form (hull_distance).
+bool hulls_meet(const Hull& a, const Hull& b) {
+  return convex_reaches_zero([&](double s) { return hull_distance(b, a.centre(s)) - a.radius(s); },
+                             a.lipschitz);
+}
+
 /// Principal axes of the atom centres as right-handed columns, largest variance first, each
 /// of the first two with its largest component positive; identity when two eigenvalues are
 /// repeated (one atom, two atoms, a ring, a regular solid...).
@@ -185,6 +305,20 @@ class OctreeBuilder {
     for (Vec3& p : local_) p -= corner;
     tree_.origin = tree_.axes * corner;
     tree_.rc = characteristic_radius(atoms_);
+    tree_.cone_pairs = cone_pairs(atoms_, opt_.cones);
+    hulls_.reserve(tree_.cone_pairs.size());
+    for (const auto& [a, b] : tree_.cone_pairs)
+      hulls_.push_back(make_hull(local_[a], atoms_.atoms[a].radius, local_[b], atoms_.atoms[b].radius));
+    cones_by_atom_start_.assign(atoms_.atoms.size() + 1, 0);
+    for (const auto& [a, b] : tree_.cone_pairs) {
+      ++cones_by_atom_start_[a + 1];
+      ++cones_by_atom_start_[b + 1];
+    }
+    for (std::size_t i = 0; i < atoms_.atoms.size(); ++i) cones_by_atom_start_[i + 1] += cones_by_atom_start_[i];
+    cones_by_atom_.resize(2 * tree_.cone_pairs.size());
+    std::vector<int> fill(cones_by_atom_start_.begin(), cones_by_atom_start_.end() - 1);
+    for (std::size_t k = 0; k < tree_.cone_pairs.size(); ++k)
+      for (int i : tree_.cone_pairs[k]) cones_by_atom_[fill[i]++] = static_cast<int>(k);
     if (opt_.min_depth > 0) {
       tree_.min_depth = opt_.min_depth;
     } else {
@@ -229,18 +363,43 @@ class OctreeBuilder {
     return (local_[i] - local_[j]).squaredNorm() <= r * r;
   }
 
-  /// Criterion 1: the intersection graph of Spheres(c) is connected. Breadth-first search
-  /// that scans only the spheres not reached yet, so dense overlaps cost about linear time.
-  bool spheres_connected(const std::vector<int>& spheres) const {
-    if (spheres.size() < 2) return true;
-    std::vector<int> unreached(spheres.begin() + 1, spheres.end());
-    std::vector<int> stack = {spheres.front()};
+  /// Primitive ids of the criteria: sphere i is i, cone k is n + k (n atoms).
+  int sphere_count() const { return static_cast<int>(atoms_.atoms.size()); }
+
+  /// Whether two primitives meet (closed solids). A cone meets its own balls and any cone
+  /// sharing one; otherwise exact up to 1e-9 of the hull's slope bound, counted as meeting.
+  bool primitives_meet(int p, int q) const {
+    const int n = sphere_count();
+    if (p > q) std::swap(p, q);
+    if (q < n) return balls_intersect(p, q);
+    const auto& kq = tree_.cone_pairs[q - n];
+    if (p < n) {
+      if (p == kq[0] || p == kq[1]) return true;
+      return hull_distance(hulls_[q - n], local_[p]) <= atoms_.atoms[p].radius;
+    }
+    const auto& kp = tree_.cone_pairs[p - n];
+    if (kp[0] == kq[0] || kp[0] == kq[1] || kp[1] == kq[0] || kp[1] == kq[1]) return true;
+    return hulls_meet(hulls_[p - n], hulls_[q - n]);
+  }
+
+  /// Primitives(c): Spheres(c) then n + Cones(c), sorted.
+  void primitives(const OctreeCell& cell, std::vector<int>& out) const {
+    out.assign(cell.spheres.begin(), cell.spheres.end());
+    for (int k : cell.cones) out.push_back(sphere_count() + k);
+  }
+
+  /// Criterion 1: the intersection graph of Primitives(c) is connected. Breadth-first search
+  /// that scans only the primitives not reached yet, so dense overlaps cost about linear time.
+  bool primitives_connected(const std::vector<int>& prims) const {
+    if (prims.size() < 2) return true;
+    std::vector<int> unreached(prims.begin() + 1, prims.end());
+    std::vector<int> stack = {prims.front()};
     while (!stack.empty() && !unreached.empty()) {
       const int s = stack.back();
       stack.pop_back();
       auto keep = unreached.begin();
       for (int t : unreached) {
-        if (balls_intersect(s, t))
+        if (primitives_meet(s, t))
           stack.push_back(t);
         else
           *keep++ = t;
@@ -250,8 +409,8 @@ class OctreeBuilder {
     return unreached.empty();
   }
 
-  /// Criterion 3's test: some sphere of `a` intersects some sphere of `b` (a shared sphere
-  /// counts). Both lists are sorted.
+  /// Criterion 3's test: some primitive of `a` meets some primitive of `b` (a shared one
+  /// counts). Both lists are sorted; spheres are tried against spheres first.
   bool sets_intersect(const std::vector<int>& a, const std::vector<int>& b) const {
     auto i = a.begin();
     auto j = b.begin();
@@ -259,9 +418,15 @@ class OctreeBuilder {
       if (*i == *j) return true;
       if (*i < *j) ++i; else ++j;
     }
+    const int n = sphere_count();
+    const auto a_end = std::lower_bound(a.begin(), a.end(), n);
+    const auto b_end = std::lower_bound(b.begin(), b.end(), n);
+    for (auto s = a.begin(); s != a_end; ++s)
+      for (auto t = b.begin(); t != b_end; ++t)
+        if (balls_intersect(*s, *t)) return true;
     for (int s : a)
       for (int t : b)
-        if (balls_intersect(s, t)) return true;
+        if ((s >= n || t >= n) && primitives_meet(s, t)) return true;
     return false;
   }
 
@@ -280,15 +445,17 @@ class OctreeBuilder {
   }
 
   /// Criterion marks of one candidate leaf (reads the tree only).
-  void evaluate_cell(int c, std::vector<std::pair<int, int>>& marks,
-                     std::vector<int>& touching) const {
+  void evaluate_cell(int c, std::vector<std::pair<int, int>>& marks, std::vector<int>& touching,
+                     std::vector<int>& mine, std::vector<int>& theirs) const {
     const OctreeCell& cell = tree_.cells[c];
     if (!cell.is_active()) return;
     const bool exempt = opt_.skip_interior_cells && cell.inside_one_ball;
     const int d = tree_.min_depth;
     if (criterion(2) && cell.level < d && !exempt) marks.emplace_back(c, 2);
-    if (criterion(1) && cell.level >= d && !cell.inside_one_ball && !spheres_connected(cell.spheres))
-      marks.emplace_back(c, 1);
+    const bool test_1 = criterion(1) && cell.level >= d && !cell.inside_one_ball;
+    const bool test_3 = criterion(3) && cell.level >= d && !cell.inside_one_ball;
+    if (test_1 || test_3) primitives(cell, mine);
+    if (test_1 && !primitives_connected(mine)) marks.emplace_back(c, 1);
     if (!criterion(3) && !criterion(4)) return;
     touching_leaves(tree_, c, touching);
     for (int t : touching) {
@@ -296,10 +463,12 @@ class OctreeBuilder {
       if (!other.is_active()) continue;
       if (criterion(4) && std::abs(cell.level - other.level) > 1 && contact_dimension(cell, other) >= 1)
         marks.emplace_back(cell.level < other.level ? c : t, 4);
-      if (criterion(3) && cell.level >= d && other.level >= d && !cell.inside_one_ball &&
-          !other.inside_one_ball && !sets_intersect(cell.spheres, other.spheres)) {
-        if (cell.level <= other.level) marks.emplace_back(c, 3);
-        if (other.level <= cell.level) marks.emplace_back(t, 3);
+      if (test_3 && other.level >= d && !other.inside_one_ball) {
+        primitives(other, theirs);
+        if (!sets_intersect(mine, theirs)) {
+          if (cell.level <= other.level) marks.emplace_back(c, 3);
+          if (other.level <= cell.level) marks.emplace_back(t, 3);
+        }
       }
     }
   }
@@ -308,9 +477,9 @@ class OctreeBuilder {
     std::vector<std::vector<std::pair<int, int>>> per(candidates.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        std::vector<int> touching;
+                        std::vector<int> touching, mine, theirs;
                         for (std::size_t i = r.begin(); i != r.end(); ++i)
-                          evaluate_cell(candidates[i], per[i], touching);
+                          evaluate_cell(candidates[i], per[i], touching, mine, theirs);
                       });
     std::vector<std::pair<int, int>> marks;
     for (auto& m : per) marks.insert(marks.end(), m.begin(), m.end());
@@ -372,7 +541,10 @@ class OctreeBuilder {
       child.parent = c;
       child.inside_one_ball = false;
     }
-    for (int i : parent.spheres) {
+    // masks[x]: the children met by the ball parent.spheres[x], bit k for child k.
+    std::vector<std::uint8_t> masks(parent.spheres.size(), 0);
+    for (std::size_t x = 0; x < parent.spheres.size(); ++x) {
+      const int i = parent.spheres[x];
       const Vec3& p = local_[i];
       const double r = atoms_.atoms[i].radius;
       const double r2 = r * r;
@@ -391,6 +563,7 @@ class OctreeBuilder {
         d2 += near[1][b1];
         d2 += near[2][b2];
         if (d2 > r2) continue;
+        masks[x] |= static_cast<std::uint8_t>(1u << k);
         OctreeCell& child = out[k];
         child.spheres.push_back(i);
         if (!child.inside_one_ball) {
@@ -401,6 +574,35 @@ class OctreeBuilder {
           child.inside_one_ball = e2 <= r2;
         }
       }
+    }
+    // Cones(child), the cones whose solid meets the cube while neither of their balls does:
+    // candidates are the parent's and those of the parent's balls (a cone meets a sub-cube
+    // only if it meets the cube). A cube inside one ball holds no boundary and is never tested
+    // by criteria 1 and 3: its children need none (they are active through that ball).
+    if (parent.inside_one_ball) return;
+    std::vector<int> candidates(parent.cones);
+    for (std::size_t x = 0; x < parent.spheres.size(); ++x)
+      if (masks[x] != 0xFF) {
+        const int i = parent.spheres[x];
+        candidates.insert(candidates.end(), cones_by_atom_.begin() + cones_by_atom_start_[i],
+                          cones_by_atom_.begin() + cones_by_atom_start_[i + 1]);
+      }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    auto ball_mask = [&](int i) -> unsigned {
+      const auto it = std::lower_bound(parent.spheres.begin(), parent.spheres.end(), i);
+      return it != parent.spheres.end() && *it == i ? masks[it - parent.spheres.begin()] : 0u;
+    };
+    const Vec3 parent_lo(lo[0][0], lo[1][0], lo[2][0]);
+    for (int k : candidates) {
+      const auto& [a, b] = tree_.cone_pairs[k];
+      const unsigned via_ball = ball_mask(a) | ball_mask(b);
+      if (via_ball == 0xFF || !near_crease(hulls_[k], parent_lo, 2 * side)) continue;
+      for (int j = 0; j < 8; ++j)
+        if (!(via_ball >> j & 1) &&
+            hull_meets_cube_outside_balls(hulls_[k], Vec3(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]),
+                                          side))
+          out[j].cones.push_back(k);
     }
   }
 
@@ -430,6 +632,8 @@ class OctreeBuilder {
   const MedialSurface& atoms_;
   const OctreeOptions& opt_;
   std::vector<Vec3> local_;  // atom centres in the root frame
+  std::vector<Hull> hulls_;  // the cones' solids in the root frame, by index in cone_pairs
+  std::vector<int> cones_by_atom_start_, cones_by_atom_;  // CSR: atom -> its cones, sorted
   Octree tree_;
 };
 

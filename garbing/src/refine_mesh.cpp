@@ -32,7 +32,7 @@ class Refiner {
     const auto t0 = Clock::now();
     MedialSurface local = atoms;
     for (auto& a : local.atoms) a.centre = tree.to_local(a.centre);
-    shape_ = std::make_unique<TargetShape>(local, cone_pairs(atoms, opt.cones));
+    shape_ = std::make_unique<TargetShape>(local, tree.cone_pairs);
     stats_.cones = shape_->cone_count();
     stats_.seconds_cones = seconds_since(t0);
   }
@@ -58,15 +58,16 @@ class Refiner {
 
   // --- the starting mesh ---------------------------------------------------------------------
 
-  /// P(c) of a leaf: Spheres(c) and the cones meeting the cube through one of those balls
-  /// (a cone is the hull of its two balls, so it meets the cube when one of them does; a cone
-  /// entering the cube only through its waist, between two balls that both miss it, is left
-  /// out: rare, and finding it costs a box query per leaf through thousands of overlapping
-  /// cone boxes).
+  /// P(c) of a leaf: Spheres(c), the cones of those balls, and Cones(c) (the cones meeting
+  /// the cube through their crease only): every primitive whose solid meets the cube.
   void add_leaf_primitives(int leaf, std::vector<PrimitiveId>& out) const {
     const OctreeCell& cell = tree_.cells[leaf];
     out.insert(out.end(), cell.spheres.begin(), cell.spheres.end());
     shape_->cones_of_atoms(cell.spheres, out);
+    const int n = static_cast<int>(shape_->sphere_count());
+    for (int k : cell.cones) out.push_back(n + k);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
   /// P for a point (vertices of --no-dual and --refine): the primitives meeting the closed

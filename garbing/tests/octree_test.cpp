@@ -93,18 +93,72 @@ TEST(Octree, MinDepthOverrideAndMaxDepthStop) {
   EXPECT_FALSE(mg::build_octree(gap).hit_max_depth);
 }
 
+/// Brute-force geometry of a cone's solid, the union of the balls B(c(t), r(t)), c and r
+/// linear from one atom to the other: minima by sampling t, each sample within
+/// slope * step / 2 of the true minimum; `tolerance` returns that bound.
+struct SampledHull {
+  Eigen::Vector3d c1, d;
+  double r1, dr;
+  static constexpr int steps = 2000;
+  SampledHull(const mg::MedialSurface& s, const std::array<int, 2>& pair)
+      : c1(s.atoms[pair[0]].centre), d(s.atoms[pair[1]].centre - c1), r1(s.atoms[pair[0]].radius),
+        dr(s.atoms[pair[1]].radius - r1) {}
+  Eigen::Vector3d centre(double t) const { return c1 + t * d; }
+  double radius(double t) const { return r1 + t * dr; }
+  double tolerance() const { return (d.norm() + std::abs(dr)) / steps; }
+  template <class F>
+  static double min_over_t(const F& f) {
+    double best = INFINITY;
+    for (int k = 0; k <= steps; ++k) best = std::min(best, f(double(k) / steps));
+    return best;
+  }
+};
+
 /// Criteria 1, 3 and 4 hold at the fixed point, checked by brute force over the leaves
 /// touching each active leaf (touching_leaves is checked against all pairs separately).
+/// Primitives: sphere i is i, cone k of t.cone_pairs is n + k; a pair counts as meeting
+/// when the sampled minimum is within the sampling tolerance (so the check never blames the
+/// octree for a meeting it may have seen).
 void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
   const auto active = active_leaves(t);
-  auto intersect = [&](int i, int j) {
-    const auto& a = s.atoms[i];
-    const auto& b = s.atoms[j];
-    return (a.centre - b.centre).norm() <= a.radius + b.radius;
+  const int n = static_cast<int>(s.atoms.size());
+  std::vector<SampledHull> hulls;
+  for (const auto& pair : t.cone_pairs) hulls.emplace_back(s, pair);
+  auto meet = [&](int i, int j) {
+    if (i == j) return true;
+    if (i > j) std::swap(i, j);
+    if (j < n) {
+      const auto& a = s.atoms[i];
+      const auto& b = s.atoms[j];
+      return (a.centre - b.centre).norm() <= a.radius + b.radius;
+    }
+    const auto& pj = t.cone_pairs[j - n];
+    const SampledHull& hj = hulls[j - n];
+    if (i < n) {
+      if (i == pj[0] || i == pj[1]) return true;
+      const auto& a = s.atoms[i];
+      return SampledHull::min_over_t([&](double u) { return (a.centre - hj.centre(u)).norm() - hj.radius(u); }) <=
+             a.radius + hj.tolerance();
+    }
+    const auto& pi = t.cone_pairs[i - n];
+    if (pi[0] == pj[0] || pi[0] == pj[1] || pi[1] == pj[0] || pi[1] == pj[1]) return true;
+    const SampledHull& hi = hulls[i - n];
+    double best = INFINITY;
+    for (int x = 0; x <= 200; ++x)
+      for (int y = 0; y <= 200; ++y)
+        best = std::min(best, (hi.centre(x / 200.0) - hj.centre(y / 200.0)).norm() - hi.radius(x / 200.0) -
+                                  hj.radius(y / 200.0));
+    return best <= 10 * (hi.tolerance() + hj.tolerance());
+  };
+  auto primitives = [&](const mg::OctreeCell& c) {
+    std::vector<int> out(c.spheres.begin(), c.spheres.end());
+    for (int k : c.cones) out.push_back(n + k);
+    return out;
   };
   std::vector<int> touching;
   for (std::size_t x = 0; x < active.size(); ++x) {
     const auto& a = t.cells[active[x]];
+    const auto pa = primitives(a);
     mg::touching_leaves(t, active[x], touching);
     for (int y : touching) {
       const auto& b = t.cells[y];
@@ -115,23 +169,23 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
       }
       if (dim >= 0 && a.level >= t.min_depth && b.level >= t.min_depth) {
         bool linked = false;
-        for (int i : a.spheres)
-          for (int j : b.spheres) linked = linked || i == j || intersect(i, j);
+        for (int i : pa)
+          for (int j : primitives(b)) linked = linked || meet(i, j);
         EXPECT_TRUE(linked) << "criterion 3 between leaves " << active[x] << " and " << y;
       }
     }
     if (a.level >= t.min_depth) {  // criterion 1: one connected component per leaf
-      std::vector<int> reached = {a.spheres.front()}, todo = reached;
+      std::vector<int> reached = {pa.front()}, todo = reached;
       while (!todo.empty()) {
         const int i = todo.back();
         todo.pop_back();
-        for (int j : a.spheres)
-          if (std::find(reached.begin(), reached.end(), j) == reached.end() && intersect(i, j)) {
+        for (int j : pa)
+          if (std::find(reached.begin(), reached.end(), j) == reached.end() && meet(i, j)) {
             reached.push_back(j);
             todo.push_back(j);
           }
       }
-      EXPECT_EQ(reached.size(), a.spheres.size()) << "criterion 1 at leaf " << active[x];
+      EXPECT_EQ(reached.size(), pa.size()) << "criterion 1 at leaf " << active[x];
     }
   }
 }
@@ -143,12 +197,65 @@ TEST(Octree, CriteriaHoldAtTheFixedPointOnARandomBlob) {
   expect_criteria_hold(s, t);
 }
 
+TEST(Octree, CriteriaHoldWithEveryConeOfARandomBlob) {
+  // No cone filter: many cones whose crease fill reaches leaves that no ball meets.
+  const auto s = mg_test::blob(40, 0.08, 0.3, 7);
+  mg::OctreeOptions opt;
+  opt.cones.min_circle_ratio = 0;
+  opt.cones.max_collar = 0;
+  const auto t = mg::build_octree(s, opt);
+  EXPECT_FALSE(t.hit_max_depth);
+  long crease_leaves = 0;
+  for (int c : active_leaves(t)) crease_leaves += t.cells[c].spheres.empty();
+  EXPECT_GT(crease_leaves, 0);
+  expect_criteria_hold(s, t);
+}
+
 TEST(Octree, CriteriaHoldOnTwoChainsPassingClose) {
   mg::MedialSurface s;
   mg_test::add_chain(s, Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(1, 0, 0), 21, 0.1);
   mg_test::add_chain(s, Eigen::Vector3d(0, -1, 0.21), Eigen::Vector3d(0, 1, 0.21), 21, 0.1);
   const auto t = mg::build_octree(s);
   expect_criteria_hold(s, t);
+}
+
+/// Cones(c) is exactly the cones whose solid meets the cube while neither ball does, checked
+/// on every leaf by sampling: a clear meeting must be listed, a clear miss must not.
+TEST(Octree, CreaseConesAreTheConesMeetingTheCubeOutsideTheirBalls) {
+  // Two balls meeting at a shallow angle: a deep crease, filled by their cone.
+  const auto s = atoms({{Eigen::Vector3d(0, 0, 0), 1.0}, {Eigen::Vector3d(1.6, 0.1, -0.2), 0.8}});
+  mg::OctreeOptions opt;
+  opt.cones.min_circle_ratio = 0;
+  opt.cones.max_collar = 0;
+  const auto t = mg::build_octree(s, opt);
+  ASSERT_EQ(t.cone_pairs.size(), 1u);
+  const SampledHull hull(s, t.cone_pairs[0]);
+  long listed = 0, checked = 0;
+  for (int c : t.leaves) {
+    const auto& cell = t.cells[c];
+    const double side = t.side(cell.level);
+    const Eigen::Vector3d lo(cell.ijk[0] * side, cell.ijk[1] * side, cell.ijk[2] * side);
+    auto cube_distance = [&](const Eigen::Vector3d& world) {
+      const Eigen::Vector3d p = t.to_local(world);
+      return (p - p.cwiseMax(lo).cwiseMin(lo + Eigen::Vector3d::Constant(side))).norm();
+    };
+    bool ball_meets = false;
+    for (const auto& a : s.atoms) ball_meets = ball_meets || cube_distance(a.centre) <= a.radius;
+    const double gap = SampledHull::min_over_t([&](double u) { return cube_distance(hull.centre(u)) - hull.radius(u); });
+    const bool is_listed = !cell.cones.empty();
+    listed += is_listed;
+    if (ball_meets) {
+      EXPECT_FALSE(is_listed) << "leaf " << c << " meets a ball: its ball stands for the cone";
+    } else if (gap < -hull.tolerance()) {
+      EXPECT_TRUE(is_listed) << "leaf " << c << " meets the crease fill by " << -gap;
+      ++checked;
+    } else if (gap > hull.tolerance()) {
+      EXPECT_FALSE(is_listed) << "leaf " << c << " misses the cone by " << gap;
+    }
+    EXPECT_EQ(cell.is_active(), ball_meets || is_listed);
+  }
+  EXPECT_GT(checked, 10);  // the crease is deep enough to hold leaves
+  EXPECT_GT(listed, 10);
 }
 
 TEST(Octree, TouchingLeavesMatchesBruteForce) {

@@ -4,6 +4,7 @@
 #include "garbing/triangle_defects.h"
 
 #include <gtest/gtest.h>
+#include <iostream>
 #include <tbb/global_control.h>
 
 #include "atom_sets.h"
@@ -50,13 +51,13 @@ TEST(RefineMesh, OneSphereReproducesThePapersRowOnTheSphere) {
 
 TEST(RefineMesh, TwoOverlappingSpheresLandExactlyOnG) {
   const auto s = atoms({{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.2, 0.3, -0.2), 0.7}});
-  mg::RefineOptions opt;
+  mg::OctreeOptions opt;
   opt.cones.min_circle_ratio = 0;  // circle radius 0.80 of the smaller ball: keep the cone
   opt.cones.max_collar = 0;        // and its collar (2.4 rc / 8)
   const auto pairs = mg::cone_pairs(s, opt.cones);
   ASSERT_EQ(pairs.size(), 1u);
   const mg::TargetShape shape(s, pairs);
-  const auto m2 = garb(s, opt);
+  const auto m2 = garb(s, {}, opt);
   EXPECT_EQ(m2.stats.cones, 1u);
   for (const Vector3d& p : points(m2.mesh)) {
     EXPECT_LT(shape.distance(p), 1e-9) << p.transpose();
@@ -84,19 +85,19 @@ mg::OctreeOptions coarse() {
 TEST(RefineMesh, AblationsAndSubdivisionStayClosed) {
   const auto s = mg_test::blob(12, 0.2, 0.4, 3);
   mg::RefineOptions opt;
-  opt.cones.source = mg::ConeSource::none;
-  expect_sound(garb(s, opt, coarse()).mesh, "spheres only");
+  mg::OctreeOptions spheres_only = coarse();
+  spheres_only.cones.source = mg::ConeSource::none;
+  expect_sound(garb(s, opt, spheres_only).mesh, "spheres only");
   opt.subdivisions = 1;
-  const auto refined = garb(s, opt, coarse());
+  const auto refined = garb(s, opt, spheres_only);
   expect_sound(refined.mesh, "spheres only, refine 1");
   EXPECT_GT(refined.stats.vertices_migrated, refined.mesh.n_vertices() / 2);
   opt = {};
   opt.dual = false;
-  for (const auto* what : {"no dual", "no dual, spheres only"}) {
-    const auto no_dual = garb(s, opt, coarse());
+  for (const auto& [what, topt] : {std::make_pair("no dual", coarse()), std::make_pair("no dual, spheres only", spheres_only)}) {
+    const auto no_dual = garb(s, opt, topt);
     const auto t = mg::mesh_topology(mg::soup_from_mesh(no_dual.mesh));
     EXPECT_TRUE(t.closed && t.oriented) << what << ": " << t.first_problem;
-    opt.cones.source = mg::ConeSource::none;
   }
 }
 
@@ -125,9 +126,38 @@ TEST(RefineMesh, RefusesBadOptions) {
   opt = {};
   opt.max_travel = 0;
   EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
-  opt = {};
-  opt.cones.min_circle_ratio = 2;
-  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
+  mg::OctreeOptions topt;
+  topt.cones.min_circle_ratio = 2;
+  EXPECT_THROW(mg::build_octree(s, topt), mg::InvalidInput);
+}
+
+}  // namespace
+
+namespace {
+
+/// Every cone kept, however deep its crease: the octree wraps the cones too, so M1 lies
+/// outside G over the creases and the migration lands every vertex on G, within a leaf of
+/// where it started, with (almost) nothing to repair. Before the octree wrapped the cones,
+/// this blob folded into thousands of intersecting pairs that the repair left off G.
+TEST(RefineMesh, DeepCreasesOfEveryConeLandOnG) {
+  const auto s = mg_test::blob(30, 0.05, 0.3, 3);
+  mg::OctreeOptions topt = coarse();
+  topt.cones.min_circle_ratio = 0;
+  topt.cones.max_collar = 0;
+  const mg::Octree tree = mg::build_octree(s, topt);
+  long crease_leaves = 0;
+  for (int c : tree.leaves) crease_leaves += tree.cells[c].is_active() && tree.cells[c].spheres.empty();
+  ASSERT_GT(crease_leaves, 100);
+  const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s);
+  expect_sound(m2.mesh, "blob, every cone");
+  std::cout << "intersecting before repair " << m2.stats.intersecting_before << ", left off G "
+            << m2.stats.left_off_g << ", crease leaves " << crease_leaves << "\n";
+  EXPECT_EQ(m2.stats.left_off_g, 0u);
+  const mg::TargetShape shape(s, tree.cone_pairs);
+  const double leaf = tree.side(tree.min_depth);
+  double worst = 0;
+  for (const Vector3d& p : points(m2.mesh)) worst = std::max(worst, shape.distance(p));
+  EXPECT_LT(worst, 1e-9 * leaf);
 }
 
 }  // namespace

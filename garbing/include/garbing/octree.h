@@ -4,6 +4,7 @@
 /// ALGORITHM.md "Step 1"), driven by four subdivision criteria iterated to a fixed point.
 
 #include "garbing/medial_surface.h"
+#include "garbing/target_shape.h"
 
 #include <array>
 #include <cstdint>
@@ -24,6 +25,13 @@ struct OctreeOptions {
   /// A cell inside one closed ball holds no boundary face: do not split it beyond what grading
   /// (criterion 4) demands. Changes no boundary leaf and no M1 face; only for tests and timing.
   bool skip_interior_cells = true;
+  /// The cones of G (ALGORITHM.md "Step 3"). The tree wraps G, not only the balls: a cell is
+  /// active when it meets a ball or the convex hull of a cone's two balls, and criteria 1 and
+  /// 3 see the cones of Cones(c) as primitives too (a cone meets its own balls and the cones
+  /// sharing one; other meetings are tested exactly). Then M1 lies outside G within a leaf
+  /// everywhere, also over the creases the cones fill, and no migration crosses a crease.
+  /// ConeSource::none: the union of the balls.
+  ConeOptions cones;
 };
 
 /// An octree cell. Integer coordinates: the cell spans [ijk, ijk + 1] * side(level).
@@ -34,8 +42,13 @@ struct OctreeCell {
   int first_child = -1;   ///< children are cells first_child .. first_child + 7; -1 for a leaf
   bool inside_one_ball = false;  ///< the closed cube lies inside one closed ball
   std::vector<int> spheres;      ///< Spheres(c): atoms whose closed ball meets the closed cube
+  /// Cones(c): indices into Octree::cone_pairs of the cones whose solid (the convex hull of
+  /// the two balls) meets the closed cube where neither ball does (through the fill of the
+  /// crease between the balls), sorted. A cone one of whose balls meets the cube is not
+  /// listed: its ball stands for it in the criteria.
+  std::vector<int> cones;
   bool is_leaf() const { return first_child < 0; }
-  bool is_active() const { return !spheres.empty(); }
+  bool is_active() const { return !spheres.empty() || !cones.empty(); }
 };
 
 /// The octree and its frame. Child k of a cell has offset (k & 1, k >> 1 & 1, k >> 2 & 1).
@@ -52,6 +65,7 @@ struct Octree {
   int depth = 0;             ///< deepest level present
   bool hit_max_depth = false;        ///< a criterion wanted to split a cell at max_depth
   std::array<long, 4> splits = {0, 0, 0, 0};  ///< cells split by criterion k (first reason)
+  std::vector<std::array<int, 2>> cone_pairs;  ///< G's cones, from cone_pairs(atoms, opt.cones)
   std::vector<OctreeCell> cells;     ///< cells[0] is the root
   std::vector<int> leaves;           ///< leaf indices, sorted by (Morton order, level)
 

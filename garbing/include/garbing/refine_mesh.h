@@ -12,7 +12,6 @@
 namespace mg {
 
 struct RefineOptions {
-  ConeOptions cones;        ///< which cones join the spheres in G
   bool dual = true;         ///< false: migrate M1 itself, triangulated (Figure 11's ablation)
   int subdivisions = 0;     ///< rounds of 1-to-4 subdivision followed by migration (Figure 14)
   double max_travel = 4.0;  ///< in sides of the vertex's leaf; a longer ray falls back
@@ -47,7 +46,7 @@ struct RefinedMesh {
 /// vertices collapse to an edge). Each vertex moves along m(v) = -sum of m_g(v) over the
 /// primitives of its leaf onto G; fold-overs are detected and repaired.
 /// @param m1    from extract_coarse_mesh(tree)
-/// @param tree  from build_octree(atoms)
+/// @param tree  from build_octree(atoms): its cone_pairs are G's cones
 /// @param atoms the medial surface the tree was built from
 /// @pre opt.subdivisions >= 0, opt.max_travel > 0, opt.repair_rounds >= 0  @throws InvalidInput
 RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const MedialSurface& atoms,
