@@ -185,9 +185,9 @@ int garb_main(int argc, char** argv) {
                {"left_off_g_after_repair", r.left_off_g}};
     j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
     j["seconds"] = {{"read", t_read},
-                    {"octree", t_octree},
+                    {"octree", t_octree - tree.seconds_cone_pairs},
                     {"m1", t_m1},
-                    {"cones", r.seconds_cones},
+                    {"cones", tree.seconds_cone_pairs + r.seconds_cones},
                     {"migration", r.seconds_migration},
                     {"repair", r.seconds_repair},
                     {"m2", t_m2},

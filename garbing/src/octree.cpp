@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace mg {
@@ -127,9 +128,12 @@ struct Hull {
   double length = 0, sin_phi = 0, cos_phi = 1;  ///< |d|; (r1 - r2) / |d|; sqrt(1 - sin^2)
   double lipschitz = 0;  ///< |d| + |dr|: bounds the slope in t of every function below
   /// The crease: the circle where the two spheres meet (axial coordinate x0 from c1, radius
-  /// rho0). The part of the hull outside both balls lies within `reach` of it: in the profile
-  /// plane it is inside the triangle of the crease point and the two rims of the cone.
-  double x0 = 0, rho0 = 0, reach = 0;
+  /// rho0); rim: the circles where the cone touches the spheres, (x, radius) of the first
+  /// then of the second. In the profile half-plane the part of the hull outside both balls
+  /// lies inside the triangle of the crease point and the two rims.
+  double x0 = 0, rho0 = 0;
+  std::array<double, 4> rim = {0, 0, 0, 0};
+  std::array<double, 2> fill_lo = {0, 0}, fill_hi = {0, 0};  ///< the triangle's box (x, radius)
   Vec3 centre(double t) const { return c1 + t * d; }
   double radius(double t) const { return r1 + t * dr; }
 };
@@ -147,10 +151,9 @@ Hull make_hull(const Vec3& c1, double r1, const Vec3& c2, double r2) {
   const double L = h.length;
   h.x0 = (L * L + r1 * r1 - r2 * r2) / (2 * L);
   h.rho0 = std::sqrt(std::max(0.0, r1 * r1 - h.x0 * h.x0));
-  const double rim1x = r1 * h.sin_phi, rim1y = r1 * h.cos_phi;
-  const double rim2x = L + r2 * h.sin_phi, rim2y = r2 * h.cos_phi;
-  h.reach = std::sqrt(std::max((rim1x - h.x0) * (rim1x - h.x0) + (rim1y - h.rho0) * (rim1y - h.rho0),
-                               (rim2x - h.x0) * (rim2x - h.x0) + (rim2y - h.rho0) * (rim2y - h.rho0)));
+  h.rim = {r1 * h.sin_phi, r1 * h.cos_phi, L + r2 * h.sin_phi, r2 * h.cos_phi};
+  h.fill_lo = {std::min({h.x0, h.rim[0], h.rim[2]}), std::min({h.rho0, h.rim[1], h.rim[3]})};
+  h.fill_hi = {std::max({h.x0, h.rim[0], h.rim[2]}), std::max({h.rho0, h.rim[1], h.rim[3]})};
   return h;
 }
 
@@ -209,14 +212,39 @@ double box_distance(const Vec3& lo, double side, const Vec3& p) {
   return std::sqrt(d2);
 }
 
-/// False when the cube [lo, lo + side] is too far from the crease to meet the part of the
-/// hull outside the balls.
+/// Squared distance from the point (x, y) to the segment (ax, ay)-(bx, by).
+double segment_distance2(double x, double y, double ax, double ay, double bx, double by) {
+  const double ux = bx - ax, uy = by - ay;
+  const double len2 = ux * ux + uy * uy;
+  double t = len2 > 0 ? ((x - ax) * ux + (y - ay) * uy) / len2 : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  const double dx = x - ax - t * ux, dy = y - ay - t * uy;
+  return dx * dx + dy * dy;
+}
+
+/// False when the cube [lo, lo + side] is too far from the crease fill to meet it: the fill,
+/// revolved about the axis, lies in the triangle (crease point, rim 1, rim 2) of the profile
+/// half-plane, so the distance from the cube's centre to the fill is at least its distance to
+/// that triangle in the centre's own meridian half-plane; compared with the half diagonal.
+/// Monotone: a cube is near whenever one of its children is.
 bool near_crease(const Hull& h, const Vec3& lo, double side) {
   const Vec3 q = lo + Vec3::Constant(side / 2) - h.c1;
   const double x = q.dot(h.d) / h.length;
   const double y = std::sqrt(std::max(0.0, q.squaredNorm() - x * x));
-  const double bound = h.reach + side * (std::sqrt(3.0) / 2);
-  return (x - h.x0) * (x - h.x0) + (y - h.rho0) * (y - h.rho0) <= bound * bound;
+  const double bound2 = 0.75 * side * side;  // (half diagonal)^2
+  const double half_diagonal = side * (std::sqrt(3.0) / 2);
+  if (x < h.fill_lo[0] - half_diagonal || x > h.fill_hi[0] + half_diagonal ||
+      y < h.fill_lo[1] - half_diagonal || y > h.fill_hi[1] + half_diagonal)
+    return false;  // off the triangle's box
+  // Inside the triangle: the same side of its three edges.
+  auto cross = [&](double ax, double ay, double bx, double by) { return (bx - ax) * (y - ay) - (by - ay) * (x - ax); };
+  const double c1 = cross(h.x0, h.rho0, h.rim[0], h.rim[1]);
+  const double c2 = cross(h.rim[0], h.rim[1], h.rim[2], h.rim[3]);
+  const double c3 = cross(h.rim[2], h.rim[3], h.x0, h.rho0);
+  if ((c1 >= 0 && c2 >= 0 && c3 >= 0) || (c1 <= 0 && c2 <= 0 && c3 <= 0)) return true;
+  return segment_distance2(x, y, h.x0, h.rho0, h.rim[0], h.rim[1]) <= bound2 ||
+         segment_distance2(x, y, h.rim[0], h.rim[1], h.rim[2], h.rim[3]) <= bound2 ||
+         segment_distance2(x, y, h.rim[2], h.rim[3], h.x0, h.rho0) <= bound2;
 }
 
 /// Whether the closed cube [lo, lo + side], which meets neither of the two balls, meets the
@@ -305,7 +333,9 @@ class OctreeBuilder {
     for (Vec3& p : local_) p -= corner;
     tree_.origin = tree_.axes * corner;
     tree_.rc = characteristic_radius(atoms_);
+    const auto t0 = std::chrono::steady_clock::now();
     tree_.cone_pairs = cone_pairs(atoms_, opt_.cones);
+    tree_.seconds_cone_pairs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     hulls_.reserve(tree_.cone_pairs.size());
     for (const auto& [a, b] : tree_.cone_pairs)
       hulls_.push_back(make_hull(local_[a], atoms_.atoms[a].radius, local_[b], atoms_.atoms[b].radius));
@@ -580,30 +610,42 @@ class OctreeBuilder {
     // only if it meets the cube). A cube inside one ball holds no boundary and is never tested
     // by criteria 1 and 3: its children need none (they are active through that ball).
     if (parent.inside_one_ball) return;
-    std::vector<int> candidates(parent.cones);
-    for (std::size_t x = 0; x < parent.spheres.size(); ++x)
-      if (masks[x] != 0xFF) {
-        const int i = parent.spheres[x];
-        candidates.insert(candidates.end(), cones_by_atom_.begin() + cones_by_atom_start_[i],
-                          cones_by_atom_.begin() + cones_by_atom_start_[i + 1]);
-      }
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    auto ball_mask = [&](int i) -> unsigned {
-      const auto it = std::lower_bound(parent.spheres.begin(), parent.spheres.end(), i);
-      return it != parent.spheres.end() && *it == i ? masks[it - parent.spheres.begin()] : 0u;
-    };
+    // Per thread: each atom's child mask in this parent, and a stamp per cone against repeats.
+    thread_local std::vector<std::uint8_t> mask_of_atom;
+    thread_local std::vector<int> stamp;
+    thread_local int generation = 0;
+    if (mask_of_atom.size() != atoms_.atoms.size()) mask_of_atom.assign(atoms_.atoms.size(), 0);
+    if (stamp.size() != tree_.cone_pairs.size()) {
+      stamp.assign(tree_.cone_pairs.size(), 0);
+      generation = 0;
+    }
+    ++generation;
+    // Children inside one ball are left without: the same reason.
+    unsigned skip = 0;
+    for (int j = 0; j < 8; ++j) skip |= static_cast<unsigned>(out[j].inside_one_ball) << j;
+    if (skip == 0xFF) return;
+    for (std::size_t x = 0; x < parent.spheres.size(); ++x) mask_of_atom[parent.spheres[x]] = masks[x];
     const Vec3 parent_lo(lo[0][0], lo[1][0], lo[2][0]);
-    for (int k : candidates) {
+    auto consider = [&](int k) {
+      if (stamp[k] == generation) return;
+      stamp[k] = generation;
       const auto& [a, b] = tree_.cone_pairs[k];
-      const unsigned via_ball = ball_mask(a) | ball_mask(b);
-      if (via_ball == 0xFF || !near_crease(hulls_[k], parent_lo, 2 * side)) continue;
+      const unsigned via_ball = mask_of_atom[a] | mask_of_atom[b];
+      if ((via_ball | skip) == 0xFF || !near_crease(hulls_[k], parent_lo, 2 * side)) return;
       for (int j = 0; j < 8; ++j)
-        if (!(via_ball >> j & 1) &&
+        if (!(skip >> j & 1) && !(via_ball >> j & 1) &&
             hull_meets_cube_outside_balls(hulls_[k], Vec3(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]),
                                           side))
           out[j].cones.push_back(k);
-    }
+    };
+    for (int k : parent.cones) consider(k);
+    for (std::size_t x = 0; x < parent.spheres.size(); ++x)
+      if (masks[x] != 0xFF) {
+        const int i = parent.spheres[x];
+        for (int e = cones_by_atom_start_[i]; e < cones_by_atom_start_[i + 1]; ++e) consider(cones_by_atom_[e]);
+      }
+    for (int i : parent.spheres) mask_of_atom[i] = 0;
+    for (auto& child : out) std::sort(child.cones.begin(), child.cones.end());
   }
 
   void finish() {

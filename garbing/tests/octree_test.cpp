@@ -221,10 +221,15 @@ TEST(Octree, CriteriaHoldOnTwoChainsPassingClose) {
 
 /// Cones(c) is exactly the cones whose solid meets the cube while neither ball does, checked
 /// on every leaf by sampling: a clear meeting must be listed, a clear miss must not.
-TEST(Octree, CreaseConesAreTheConesMeetingTheCubeOutsideTheirBalls) {
-  // Two balls meeting at a shallow angle: a deep crease, filled by their cone.
-  const auto s = atoms({{Eigen::Vector3d(0, 0, 0), 1.0}, {Eigen::Vector3d(1.6, 0.1, -0.2), 0.8}});
+class CreaseCones : public ::testing::TestWithParam<std::array<double, 5>> {};
+
+TEST_P(CreaseCones, AreTheConesMeetingTheCubeOutsideTheirBalls) {
+  // Two balls (the first at the origin, radius 1; the second at (x, y, z), radius r): the
+  // crease where they meet is filled by their cone.
+  const auto [x, y, z, r, depth] = GetParam();
+  const auto s = atoms({{Eigen::Vector3d(0, 0, 0), 1.0}, {Eigen::Vector3d(x, y, z), r}});
   mg::OctreeOptions opt;
+  opt.min_depth = static_cast<int>(depth);
   opt.cones.min_circle_ratio = 0;
   opt.cones.max_collar = 0;
   const auto t = mg::build_octree(s, opt);
@@ -239,8 +244,14 @@ TEST(Octree, CreaseConesAreTheConesMeetingTheCubeOutsideTheirBalls) {
       const Eigen::Vector3d p = t.to_local(world);
       return (p - p.cwiseMax(lo).cwiseMin(lo + Eigen::Vector3d::Constant(side))).norm();
     };
-    bool ball_meets = false;
-    for (const auto& a : s.atoms) ball_meets = ball_meets || cube_distance(a.centre) <= a.radius;
+    // Cubes that touch a ball within rounding (the tree works in its own frame) are skipped.
+    bool ball_meets = false, ball_touches = false;
+    for (const auto& a : s.atoms) {
+      const double gap = cube_distance(a.centre) - a.radius;
+      ball_meets = ball_meets || gap <= 0;
+      ball_touches = ball_touches || std::abs(gap) <= 1e-12;
+    }
+    if (ball_touches) continue;
     const double gap = SampledHull::min_over_t([&](double u) { return cube_distance(hull.centre(u)) - hull.radius(u); });
     const bool is_listed = !cell.cones.empty();
     listed += is_listed;
@@ -257,6 +268,12 @@ TEST(Octree, CreaseConesAreTheConesMeetingTheCubeOutsideTheirBalls) {
   EXPECT_GT(checked, 10);  // the crease is deep enough to hold leaves
   EXPECT_GT(listed, 10);
 }
+
+INSTANTIATE_TEST_SUITE_P(Octree, CreaseCones,
+                         ::testing::Values(std::array<double, 5>{1.6, 0.1, -0.2, 0.8, 5},   // shallow angle
+                                           std::array<double, 5>{0.9, 0.5, 0.3, 0.4, 6},    // small ball
+                                           std::array<double, 5>{1.2, -0.7, 0.4, 1.0, 5},   // equal radii
+                                           std::array<double, 5>{0.3, 0.2, 1.7, 0.9, 5}));  // off-axis
 
 TEST(Octree, TouchingLeavesMatchesBruteForce) {
   mg::OctreeOptions opt;

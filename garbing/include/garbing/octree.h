@@ -66,6 +66,7 @@ struct Octree {
   bool hit_max_depth = false;        ///< a criterion wanted to split a cell at max_depth
   std::array<long, 4> splits = {0, 0, 0, 0};  ///< cells split by criterion k (first reason)
   std::vector<std::array<int, 2>> cone_pairs;  ///< G's cones, from cone_pairs(atoms, opt.cones)
+  double seconds_cone_pairs = 0;     ///< time build_octree spent choosing them
   std::vector<OctreeCell> cells;     ///< cells[0] is the root
   std::vector<int> leaves;           ///< leaf indices, sorted by (Morton order, level)
 

@@ -33,6 +33,8 @@ struct RefineStats {
   std::size_t repaired_vertices = 0;  ///< vertices moved by the repair (on G or pulled back)
   std::size_t pulled_back = 0;        ///< pull-back steps taken (leave a vertex off G)
   std::size_t left_off_g = 0;  ///< vertices the repair's stages 2-3 left off G (pulled back)
+  /// seconds_cones: building G's primitives and hierarchy (choosing the cone pairs is the
+  /// octree's: Octree::seconds_cone_pairs).
   double seconds_cones = 0, seconds_migration = 0, seconds_repair = 0;
 };
 

@@ -34,11 +34,10 @@ struct ConeOptions {
   double min_circle_ratio = 0.9;
   /// Keep a cone only if its lateral surface stands off the crease of its two spheres (the
   /// circle where they meet) by at most this many rc / 8 (the automatic leaf side bound;
-  /// rc = (rmin + rmax) / 2, from the atoms alone); 0: no limit. M1 wraps the union of the
-  /// balls: where a cone fills a crease deeper than a leaf or two, the migration from both
-  /// sides of the crease crosses over and folds (a random blob of 150 balls: 353,658
-  /// intersecting pairs with no limit, 855 with 1). Default 1, chosen with the circle ratio
-  /// by measuring H(G, O) (results/cone_filter.md).
+  /// rc = (rmin + rmax) / 2, from the atoms alone); 0: no limit. Deep crease fills are where
+  /// G strays from the object most. Default 1, chosen with the circle ratio by measuring
+  /// H(G, O) (results/cone_filter.md). (It also once kept the migration from folding across
+  /// crease fills, before the octree wrapped the cones.)
   double max_collar = 1;
 };
 
