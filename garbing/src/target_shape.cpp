@@ -493,20 +493,25 @@ bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& di
 
 bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max, double& t,
                                    bool& inside) const {
-  // One pass over the segment [-t_max, t_max]: every interval, then the decision.
-  const Vec3 start = v - t_max * dir;
+  // First the segment [0, t_max]: every interval meeting it. One containing t = 0 means v is
+  // inside; otherwise the first entry is the smallest start. Only from inside (rare: M1 lies
+  // outside G, within a leaf) the segment [-t_max, t_max] is searched again.
   const Vec3 inv = dir.cwiseInverse();
   thread_local std::vector<std::pair<double, double>> runs;  // in units of dir from v
-  runs.clear();
-  bvh_->visit(
-      [&](const Box& b) {
-        double a = 0, z = 2 * t_max;
-        return b.clip(start, inv, a, z);
-      },
-      [&](int i) {
-        double a, z;
-        if (ray_interval(i, v, dir, a, z) && z >= -t_max && a <= t_max) runs.emplace_back(a, z);
-      });
+  auto collect = [&](double from) {
+    runs.clear();
+    const Vec3 start = v + from * dir;
+    bvh_->visit(
+        [&](const Box& b) {
+          double a = 0, z = t_max - from;
+          return b.clip(start, inv, a, z);
+        },
+        [&](int i) {
+          double a, z;
+          if (ray_interval(i, v, dir, a, z) && z >= from && a <= t_max) runs.emplace_back(a, z);
+        });
+  };
+  collect(0);
   inside = false;
   for (const auto& [a, z] : runs)
     if (a <= 0 && z >= 0) {
@@ -521,6 +526,7 @@ bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max,
     t = first;
     return true;
   }
+  collect(-t_max);
   // Leave the union toward negative t: merge the runs containing 0 downward.
   std::sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
   const double slack = 1e-12 * (1 + t_max);
