@@ -1,6 +1,7 @@
 // Benchmarks of the garbing stages on a medial surface file.
 //   garbing_bench --atoms FILE.ma [Google Benchmark options]
-// Reports octree + M1 (issue 4's target) and the whole garbing (octree + M1 + M2).
+// Reports octree + M1 wrapping G (balls and cones: the default), octree + M1 over the balls
+// alone (--cones none: issue 4's measurement), and the whole garbing (octree + M1 + M2).
 #include "garbing/coarse_mesh.h"
 #include "garbing/errors.h"
 #include "garbing/octree.h"
@@ -16,8 +17,10 @@ namespace {
 mg::MedialSurface g_atoms;
 
 void octree_and_m1(benchmark::State& state) {
+  mg::OctreeOptions opt;
+  if (state.range(0) == 0) opt.cones.source = mg::ConeSource::none;
   for (auto _ : state) {
-    const mg::Octree tree = mg::build_octree(g_atoms);
+    const mg::Octree tree = mg::build_octree(g_atoms, opt);
     const mg::CoarseMesh m1 = mg::extract_coarse_mesh(tree);
     benchmark::DoNotOptimize(m1.mesh.n_faces());
     state.counters["m1_faces"] = static_cast<double>(m1.mesh.n_faces());
@@ -38,7 +41,8 @@ void whole_garbing(benchmark::State& state) {
   }
 }
 
-BENCHMARK(octree_and_m1)->Unit(benchmark::kMillisecond)->UseRealTime();
+// Argument: 1 = wrap G (cones rt, the default), 0 = the balls alone.
+BENCHMARK(octree_and_m1)->ArgName("cones")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(whole_garbing)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

@@ -412,10 +412,13 @@ class OctreeBuilder {
     return hulls_meet(hulls_[p - n], hulls_[q - n]);
   }
 
-  /// Primitives(c): Spheres(c) then n + Cones(c), sorted.
-  void primitives(const OctreeCell& cell, std::vector<int>& out) const {
-    out.assign(cell.spheres.begin(), cell.spheres.end());
-    for (int k : cell.cones) out.push_back(sphere_count() + k);
+  /// Primitives(c): Spheres(c) then n + Cones(c), sorted; Spheres(c) itself when there are
+  /// no cones, else built in `scratch`.
+  const std::vector<int>& primitives(const OctreeCell& cell, std::vector<int>& scratch) const {
+    if (cell.cones.empty()) return cell.spheres;
+    scratch.assign(cell.spheres.begin(), cell.spheres.end());
+    for (int k : cell.cones) scratch.push_back(sphere_count() + k);
+    return scratch;
   }
 
   /// Criterion 1: the intersection graph of Primitives(c) is connected. Breadth-first search
@@ -484,8 +487,8 @@ class OctreeBuilder {
     if (criterion(2) && cell.level < d && !exempt) marks.emplace_back(c, 2);
     const bool test_1 = criterion(1) && cell.level >= d && !cell.inside_one_ball;
     const bool test_3 = criterion(3) && cell.level >= d && !cell.inside_one_ball;
-    if (test_1 || test_3) primitives(cell, mine);
-    if (test_1 && !primitives_connected(mine)) marks.emplace_back(c, 1);
+    const std::vector<int>& own = (test_1 || test_3) ? primitives(cell, mine) : cell.spheres;
+    if (test_1 && !primitives_connected(own)) marks.emplace_back(c, 1);
     if (!criterion(3) && !criterion(4)) return;
     touching_leaves(tree_, c, touching);
     for (int t : touching) {
@@ -494,8 +497,7 @@ class OctreeBuilder {
       if (criterion(4) && std::abs(cell.level - other.level) > 1 && contact_dimension(cell, other) >= 1)
         marks.emplace_back(cell.level < other.level ? c : t, 4);
       if (test_3 && other.level >= d && !other.inside_one_ball) {
-        primitives(other, theirs);
-        if (!sets_intersect(mine, theirs)) {
+        if (!sets_intersect(own, primitives(other, theirs))) {
           if (cell.level <= other.level) marks.emplace_back(c, 3);
           if (other.level <= cell.level) marks.emplace_back(t, 3);
         }
