@@ -145,7 +145,7 @@ Hull make_hull(const Vec3& c1, double r1, const Vec3& c2, double r2) {
   h.r1 = r1;
   h.dr = r2 - r1;
   h.length = h.d.norm();
-  h.sin_phi = (r1 - r2) / h.length;
+  h.sin_phi = std::clamp((r1 - r2) / h.length, -1.0, 1.0);  // |r1 - r2| < L, up to rounding
   h.cos_phi = std::sqrt(std::max(0.0, 1 - h.sin_phi * h.sin_phi));
   h.lipschitz = h.length + std::abs(h.dr);
   const double L = h.length;
@@ -163,8 +163,9 @@ Hull make_hull(const Vec3& c1, double r1, const Vec3& c2, double r2) {
 double hull_distance(const Hull& h, const Vec3& p) {
   const Vec3 q = p - h.c1;
   const double x = q.dot(h.d) / h.length;  // along the axis
-  const double y = std::sqrt(std::max(0.0, q.squaredNorm() - x * x));
-  double t = h.cos_phi > 0 ? (x - h.sin_phi * y / h.cos_phi) / h.length : 0;
+  const double y = q.cross(h.d).norm() / h.length;  // from the axis, accurate near it
+  // cos(phi) = 0 only when rounding makes one ball hold the other: the hull is the larger.
+  double t = h.cos_phi > 0 ? (x - h.sin_phi * y / h.cos_phi) / h.length : (h.dr > 0 ? 1.0 : 0.0);
   t = std::clamp(t, 0.0, 1.0);
   return (p - h.centre(t)).norm() - h.radius(t);
 }
@@ -230,7 +231,7 @@ double segment_distance2(double x, double y, double ax, double ay, double bx, do
 bool near_crease(const Hull& h, const Vec3& lo, double side) {
   const Vec3 q = lo + Vec3::Constant(side / 2) - h.c1;
   const double x = q.dot(h.d) / h.length;
-  const double y = std::sqrt(std::max(0.0, q.squaredNorm() - x * x));
+  const double y = q.cross(h.d).norm() / h.length;
   const double bound2 = 0.75 * side * side;  // (half diagonal)^2
   const double half_diagonal = side * (std::sqrt(3.0) / 2);
   if (x < h.fill_lo[0] - half_diagonal || x > h.fill_hi[0] + half_diagonal ||
@@ -457,9 +458,12 @@ class OctreeBuilder {
     for (auto s = a.begin(); s != a_end; ++s)
       for (auto t = b.begin(); t != b_end; ++t)
         if (balls_intersect(*s, *t)) return true;
-    for (int s : a)
+    for (auto s = a_end; s != a.end(); ++s)  // cones of a against everything of b
       for (int t : b)
-        if ((s >= n || t >= n) && primitives_meet(s, t)) return true;
+        if (primitives_meet(*s, t)) return true;
+    for (auto t = b_end; t != b.end(); ++t)  // cones of b against the spheres of a
+      for (auto s = a.begin(); s != a_end; ++s)
+        if (primitives_meet(*s, *t)) return true;
     return false;
   }
 
@@ -611,11 +615,11 @@ class OctreeBuilder {
     // candidates are the parent's and those of the parent's balls (a cone meets a sub-cube
     // only if it meets the cube). A cube inside one ball holds no boundary and is never tested
     // by criteria 1 and 3: its children need none (they are active through that ball).
-    if (parent.inside_one_ball) return;
+    if (parent.inside_one_ball || tree_.cone_pairs.empty()) return;
     // Per thread: each atom's child mask in this parent, and a stamp per cone against repeats.
     thread_local std::vector<std::uint8_t> mask_of_atom;
-    thread_local std::vector<int> stamp;
-    thread_local int generation = 0;
+    thread_local std::vector<std::uint64_t> stamp;
+    thread_local std::uint64_t generation = 0;
     if (mask_of_atom.size() != atoms_.atoms.size()) mask_of_atom.assign(atoms_.atoms.size(), 0);
     if (stamp.size() != tree_.cone_pairs.size()) {
       stamp.assign(tree_.cone_pairs.size(), 0);

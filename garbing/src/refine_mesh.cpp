@@ -59,7 +59,8 @@ class Refiner {
   // --- the starting mesh ---------------------------------------------------------------------
 
   /// P(c) of a leaf: Spheres(c), the cones of those balls, and Cones(c) (the cones meeting
-  /// the cube through their crease only): every primitive whose solid meets the cube.
+  /// the cube through their crease only): every primitive whose solid meets the cube (leaves
+  /// inside one ball, which own no M1 face, list no crease cones).
   void add_leaf_primitives(int leaf, std::vector<PrimitiveId>& out) const {
     const OctreeCell& cell = tree_.cells[leaf];
     out.insert(out.end(), cell.spheres.begin(), cell.spheres.end());

@@ -45,7 +45,8 @@ struct OctreeCell {
   /// Cones(c): indices into Octree::cone_pairs of the cones whose solid (the convex hull of
   /// the two balls) meets the closed cube where neither ball does (through the fill of the
   /// crease between the balls), sorted. A cone one of whose balls meets the cube is not
-  /// listed: its ball stands for it in the criteria.
+  /// listed: its ball stands for it in the criteria. Empty in a cell inside one ball and its
+  /// descendants (they hold no boundary, and the criteria skip them).
   std::vector<int> cones;
   bool is_leaf() const { return first_child < 0; }
   bool is_active() const { return !spheres.empty() || !cones.empty(); }
