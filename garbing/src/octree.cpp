@@ -1,5 +1,6 @@
 #include "garbing/octree.h"
 
+#include "garbing/detail/convex_search.h"
 #include "garbing/errors.h"
 
 #include <Eigen/Eigenvalues>
@@ -119,98 +120,54 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
-/// The solid of a cone: the convex hull of its two balls, which is the union of the balls
-/// B(c(t), r(t)) with c and r linear in t in [0, 1] (the hull of two convex sets is the union
-/// of their Minkowski combinations). Every function of t below is convex.
+using detail::box_distance;
+using detail::convex_reaches_zero;
+
+/// The solid of a cone (make_cone: axis, rims), the convex hull of its two balls, as the union
+/// of the balls B(c(t), r(t)), c and r linear in t in [0, 1]; every function of t below is
+/// convex.
 struct Hull {
-  Vec3 c1, d;          ///< first centre; second centre - first
-  double r1 = 0, dr = 0;  ///< first radius; second radius - first
-  double length = 0, sin_phi = 0, cos_phi = 1;  ///< |d|; (r1 - r2) / |d|; sqrt(1 - sin^2)
-  double lipschitz = 0;  ///< |d| + |dr|: bounds the slope in t of every function below
+  Cone k;
+  double dr = 0;         ///< second radius - first
+  double lipschitz = 0;  ///< |c2 - c1| + |dr|: bounds the slope in t of every function below
   /// The crease: the circle where the two spheres meet (axial coordinate x0 from c1, radius
-  /// rho0); rim: the circles where the cone touches the spheres, (x, radius) of the first
-  /// then of the second. In the profile half-plane the part of the hull outside both balls
-  /// lies inside the triangle of the crease point and the two rims.
+  /// rho0). In the profile half-plane (along the axis, from the axis) the part of the hull
+  /// outside both balls lies inside the triangle of the crease point and the two rims.
   double x0 = 0, rho0 = 0;
-  std::array<double, 4> rim = {0, 0, 0, 0};
   std::array<double, 2> fill_lo = {0, 0}, fill_hi = {0, 0};  ///< the triangle's box (x, radius)
-  Vec3 centre(double t) const { return c1 + t * d; }
-  double radius(double t) const { return r1 + t * dr; }
+  Vec3 centre(double t) const { return k.c1 + (t * k.length) * k.u; }
+  double radius(double t) const { return k.r1 + t * dr; }
 };
 
-Hull make_hull(const Vec3& c1, double r1, const Vec3& c2, double r2) {
+Hull make_hull(const MedialAtom& first, const MedialAtom& second) {
   Hull h;
-  h.c1 = c1;
-  h.d = c2 - c1;
-  h.r1 = r1;
+  h.k = make_cone(first, second, -1, -1);
+  const double L = h.k.length, r1 = first.radius, r2 = second.radius;
   h.dr = r2 - r1;
-  h.length = h.d.norm();
-  h.sin_phi = std::clamp((r1 - r2) / h.length, -1.0, 1.0);  // |r1 - r2| < L, up to rounding
-  h.cos_phi = std::sqrt(std::max(0.0, 1 - h.sin_phi * h.sin_phi));
-  h.lipschitz = h.length + std::abs(h.dr);
-  const double L = h.length;
+  h.lipschitz = L + std::abs(h.dr);
   h.x0 = (L * L + r1 * r1 - r2 * r2) / (2 * L);
   h.rho0 = std::sqrt(std::max(0.0, r1 * r1 - h.x0 * h.x0));
-  h.rim = {r1 * h.sin_phi, r1 * h.cos_phi, L + r2 * h.sin_phi, r2 * h.cos_phi};
-  h.fill_lo = {std::min({h.x0, h.rim[0], h.rim[2]}), std::min({h.rho0, h.rim[1], h.rim[3]})};
-  h.fill_hi = {std::max({h.x0, h.rim[0], h.rim[2]}), std::max({h.rho0, h.rim[1], h.rim[3]})};
+  h.fill_lo = {std::min({h.x0, h.k.t_lo, h.k.t_hi}), std::min({h.rho0, h.k.rho_lo, h.k.rho_hi})};
+  h.fill_hi = {std::max({h.x0, h.k.t_lo, h.k.t_hi}), std::max({h.rho0, h.k.rho_lo, h.k.rho_hi})};
   return h;
+}
+
+/// p in the profile half-plane: along the axis from c1, and from the axis (a cross product:
+/// accurate near it).
+std::pair<double, double> profile(const Hull& h, const Vec3& p) {
+  const Vec3 q = p - h.k.c1;
+  return {q.dot(h.k.u), q.cross(h.k.u).norm()};
 }
 
 /// min over t of |p - c(t)| - r(t): the distance from p to the hull when p is outside it,
 /// <= 0 exactly when p is inside. Closed form: the stationary t has the foot of p on the axis
 /// ahead of c(t) by tan(phi) times p's distance from the axis; clamped to [0, 1].
 double hull_distance(const Hull& h, const Vec3& p) {
-  const Vec3 q = p - h.c1;
-  const double x = q.dot(h.d) / h.length;  // along the axis
-  const double y = q.cross(h.d).norm() / h.length;  // from the axis, accurate near it
+  const auto [x, y] = profile(h, p);
   // cos(phi) = 0 only when rounding makes one ball hold the other: the hull is the larger.
-  double t = h.cos_phi > 0 ? (x - h.sin_phi * y / h.cos_phi) / h.length : (h.dr > 0 ? 1.0 : 0.0);
+  double t = h.k.cos_phi > 0 ? (x - h.k.sin_phi * y / h.k.cos_phi) / h.k.length : (h.dr > 0 ? 1.0 : 0.0);
   t = std::clamp(t, 0.0, 1.0);
   return (p - h.centre(t)).norm() - h.radius(t);
-}
-
-/// Whether a convex function f on [0, 1], its slope bounded by `lipschitz`, reaches <= 0:
-/// golden section that stops as soon as a sample is <= 0 (yes) or the bound from the
-/// bracket, min sample - lipschitz * width, is > 0 (no); a width of 1e-9 counts as yes.
-template <class F>
-bool convex_reaches_zero(const F& f, double lipschitz) {
-  constexpr double g = 0.6180339887498949;
-  double a = 0, b = 1;
-  double x1 = b - g * (b - a), x2 = a + g * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  const double f0 = f(0.0), fe = f(1.0);
-  double best = std::min({f0, fe, f1, f2});
-  // The minimum lies in [0, 1]; the bound needs the bracket that holds it.
-  while (best > 0) {
-    if (best - lipschitz * (b - a) > 0) return false;
-    if (b - a <= 1e-9) return true;
-    if (f1 <= f2) {
-      b = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = b - g * (b - a);
-      f1 = f(x1);
-      best = std::min(best, f1);
-    } else {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + g * (b - a);
-      f2 = f(x2);
-      best = std::min(best, f2);
-    }
-  }
-  return true;
-}
-
-double box_distance(const Vec3& lo, double side, const Vec3& p) {
-  double d2 = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double d = std::max({lo[a] - p[a], 0.0, p[a] - lo[a] - side});
-    d2 += d * d;
-  }
-  return std::sqrt(d2);
 }
 
 /// Squared distance from the point (x, y) to the segment (ax, ay)-(bx, by).
@@ -229,23 +186,22 @@ double segment_distance2(double x, double y, double ax, double ay, double bx, do
 /// that triangle in the centre's own meridian half-plane; compared with the half diagonal.
 /// Monotone: a cube is near whenever one of its children is.
 bool near_crease(const Hull& h, const Vec3& lo, double side) {
-  const Vec3 q = lo + Vec3::Constant(side / 2) - h.c1;
-  const double x = q.dot(h.d) / h.length;
-  const double y = q.cross(h.d).norm() / h.length;
+  const auto [x, y] = profile(h, lo + Vec3::Constant(side / 2));
   const double bound2 = 0.75 * side * side;  // (half diagonal)^2
   const double half_diagonal = side * (std::sqrt(3.0) / 2);
   if (x < h.fill_lo[0] - half_diagonal || x > h.fill_hi[0] + half_diagonal ||
       y < h.fill_lo[1] - half_diagonal || y > h.fill_hi[1] + half_diagonal)
     return false;  // off the triangle's box
   // Inside the triangle: the same side of its three edges.
+  const Cone& k = h.k;
   auto cross = [&](double ax, double ay, double bx, double by) { return (bx - ax) * (y - ay) - (by - ay) * (x - ax); };
-  const double c1 = cross(h.x0, h.rho0, h.rim[0], h.rim[1]);
-  const double c2 = cross(h.rim[0], h.rim[1], h.rim[2], h.rim[3]);
-  const double c3 = cross(h.rim[2], h.rim[3], h.x0, h.rho0);
+  const double c1 = cross(h.x0, h.rho0, k.t_lo, k.rho_lo);
+  const double c2 = cross(k.t_lo, k.rho_lo, k.t_hi, k.rho_hi);
+  const double c3 = cross(k.t_hi, k.rho_hi, h.x0, h.rho0);
   if ((c1 >= 0 && c2 >= 0 && c3 >= 0) || (c1 <= 0 && c2 <= 0 && c3 <= 0)) return true;
-  return segment_distance2(x, y, h.x0, h.rho0, h.rim[0], h.rim[1]) <= bound2 ||
-         segment_distance2(x, y, h.rim[0], h.rim[1], h.rim[2], h.rim[3]) <= bound2 ||
-         segment_distance2(x, y, h.rim[2], h.rim[3], h.x0, h.rho0) <= bound2;
+  return segment_distance2(x, y, h.x0, h.rho0, k.t_lo, k.rho_lo) <= bound2 ||
+         segment_distance2(x, y, k.t_lo, k.rho_lo, k.t_hi, k.rho_hi) <= bound2 ||
+         segment_distance2(x, y, k.t_hi, k.rho_hi, h.x0, h.rho0) <= bound2;
 }
 
 /// Whether the closed cube [lo, lo + side], which meets neither of the two balls, meets the
@@ -257,7 +213,8 @@ bool hull_meets_cube_outside_balls(const Hull& h, const Vec3& lo, double side) {
   if (from_centre <= side / 2) return true;                      // inscribed ball
   if (from_centre > side * (std::sqrt(3.0) / 2)) return false;   // circumscribed ball
   return convex_reaches_zero(
-      [&](double t) { return box_distance(lo, side, h.centre(t)) - h.radius(t); }, h.lipschitz);
+      [&, hi = Vec3(lo + Vec3::Constant(side))](double t) { return box_distance(lo, hi, h.centre(t)) - h.radius(t); },
+      h.lipschitz);
 }
 
 /// Whether two hulls meet: min over (s, t) of |c(s) - c'(t)| - r(s) - r'(t) <= 0, jointly
@@ -339,7 +296,7 @@ class OctreeBuilder {
     tree_.seconds_cone_pairs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     hulls_.reserve(tree_.cone_pairs.size());
     for (const auto& [a, b] : tree_.cone_pairs)
-      hulls_.push_back(make_hull(local_[a], atoms_.atoms[a].radius, local_[b], atoms_.atoms[b].radius));
+      hulls_.push_back(make_hull({local_[a], atoms_.atoms[a].radius}, {local_[b], atoms_.atoms[b].radius}));
     cones_by_atom_start_.assign(atoms_.atoms.size() + 1, 0);
     for (const auto& [a, b] : tree_.cone_pairs) {
       ++cones_by_atom_start_[a + 1];

@@ -1,5 +1,6 @@
 #include "garbing/target_shape.h"
 
+#include "garbing/detail/convex_search.h"
 #include "garbing/errors.h"
 
 #include <algorithm>
@@ -99,9 +100,7 @@ Box sphere_box(const MedialAtom& s) {
   return {s.centre - Vec3::Constant(s.radius), s.centre + Vec3::Constant(s.radius)};
 }
 
-double box_distance(const Vec3& lo, const Vec3& hi, const Vec3& p) {
-  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
-}
+using detail::box_distance;
 
 /// Interval of the ray o + t d inside the closed ball; false if it misses.
 bool ray_sphere(const MedialAtom& s, const Vec3& o, const Vec3& d, double& t0, double& t1) {
@@ -785,31 +784,14 @@ void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi, std::ve
                   out.push_back(i);
                   return;
                 }
-                // The hull of the two balls is the union of the interpolated balls; the gap
-                // f(s) = dist(c(s), box) - r(s) is convex: golden-section search.
-                auto f = [&](double s) {
-                  return box_distance(lo, hi, s1.centre + s * (s2.centre - s1.centre)) -
-                         (s1.radius + s * (s2.radius - s1.radius));
-                };
-                double a = 0, b = 1;
-                const double g = (std::sqrt(5.0) - 1) / 2;
-                double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = f(x1), f2 = f(x2);
-                for (int it = 0; it < 60 && f1 > 0 && f2 > 0; ++it) {
-                  if (f1 < f2) {
-                    b = x2;
-                    x2 = x1;
-                    f2 = f1;
-                    x1 = b - g * (b - a);
-                    f1 = f(x1);
-                  } else {
-                    a = x1;
-                    x1 = x2;
-                    f1 = f2;
-                    x2 = a + g * (b - a);
-                    f2 = f(x2);
-                  }
-                }
-                if (f1 <= 0 || f2 <= 0) out.push_back(i);
+                // The hull of the two balls is the union of the interpolated balls: the gap
+                // dist(c(s), box) - r(s) is convex in s, its slope at most |c2 - c1| + |r2 - r1|.
+                const Vec3 d = s2.centre - s1.centre;
+                const double dr = s2.radius - s1.radius;
+                if (detail::convex_reaches_zero(
+                        [&](double s) { return box_distance(lo, hi, s1.centre + s * d) - (s1.radius + s * dr); },
+                        d.norm() + std::abs(dr)))
+                  out.push_back(i);
               });
   std::sort(out.begin() + static_cast<long>(start), out.end());
 }
