@@ -1,7 +1,8 @@
 // garb: medial surface garbing. Atoms in, closed triangle mesh out.
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
 //        [--no-criterion N ...] [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C] [--spheres-only]
-//        [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N] [--stats FILE.json] [--threads N]
+//        [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N] [--max-gap F] [--stats FILE.json]
+//        [--threads N]
 #include "garbing/atomic_file.h"
 #include "garbing/cli_main.h"
 #include "garbing/coarse_mesh.h"
@@ -70,6 +71,9 @@ int garb_main(int argc, char** argv) {
       ->check(mg::Positive);
   app.add_option("--repair-rounds", refine.repair_rounds,
                  "rounds of each fold repair stage (0: no repair, folds are only counted)")
+      ->check(mg::NonNegative);
+  app.add_option("--max-gap", refine.max_gap,
+                 "split an edge whose midpoint is provably farther than F leaf sides from G (0: off)")
       ->check(mg::NonNegative);
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(mg::NonNegative);
@@ -176,6 +180,8 @@ int garb_main(int argc, char** argv) {
                {"fallback_missed", r.fallback_missed},
                {"fallback_too_far", r.fallback_too_far},
                {"collapsed_digons", r.collapsed_digons},
+               {"max_gap", refine.max_gap},
+               {"gap_splits", r.gap_splits},
                {"intersecting_pairs_before_repair", r.intersecting_before},
                {"degenerate_before_repair", r.degenerate_before},
                {"intersecting_pairs_after_repair", r.intersecting_after},

@@ -159,16 +159,8 @@ std::pair<double, double> profile(const Hull& h, const Vec3& p) {
   return {q.dot(h.k.u), q.cross(h.k.u).norm()};
 }
 
-/// min over t of |p - c(t)| - r(t): the distance from p to the hull when p is outside it,
-/// <= 0 exactly when p is inside. Closed form: the stationary t has the foot of p on the axis
-/// ahead of c(t) by tan(phi) times p's distance from the axis; clamped to [0, 1].
-double hull_distance(const Hull& h, const Vec3& p) {
-  const auto [x, y] = profile(h, p);
-  // cos(phi) = 0 only when rounding makes one ball hold the other: the hull is the larger.
-  double t = h.k.cos_phi > 0 ? (x - h.k.sin_phi * y / h.k.cos_phi) / h.k.length : (h.dr > 0 ? 1.0 : 0.0);
-  t = std::clamp(t, 0.0, 1.0);
-  return (p - h.centre(t)).norm() - h.radius(t);
-}
+/// The hull's distance function (target_shape.h): <= 0 exactly when p is inside.
+double hull_distance(const Hull& h, const Vec3& p) { return mg::hull_distance(h.k, p); }
 
 /// Squared distance from the point (x, y) to the segment (ax, ay)-(bx, by).
 double segment_distance2(double x, double y, double ax, double ay, double bx, double by) {

@@ -45,6 +45,12 @@ class Refiner {
       start_from_m1();
     migrate_all();
     std::vector<std::array<int, 3>> triangles = triangulate();
+    // Later rounds test only the edges at vertices the round before added.
+    for (std::size_t round = 0, fresh = 0; opt_.max_gap > 0 && round < std::size_t(opt_.gap_rounds); ++round) {
+      const std::size_t added = start_.size();
+      if (!split_gaps(triangles, fresh)) break;
+      fresh = added;
+    }
     stats_.seconds_migration = seconds_since(t0);
     repair(triangles);
     for (int round = 0; round < opt_.subdivisions; ++round) {
@@ -184,7 +190,7 @@ class Refiner {
     return anywhere ? Outcome::too_far : Outcome::missed;
   }
 
-  void count(Outcome o) {
+  void count_outcome(Outcome o) {
     switch (o) {
       case Outcome::ray: break;
       case Outcome::zero_direction: ++stats_.fallback_zero_direction; break;
@@ -201,7 +207,7 @@ class Refiner {
     tbb::parallel_for(first, n, [&](std::size_t i) {
       outcome[i - first] = migrate(start_[i], primitives_[i], leaf_side_[i], position_[i]);
     });
-    for (Outcome o : outcome) count(o);
+    for (Outcome o : outcome) count_outcome(o);
     stats_.vertices_migrated += n - first;
   }
 
@@ -313,6 +319,152 @@ class Refiner {
       point_primitives(start_[i], primitives_[i], leaf_side_[i]);
     });
     migrate_range(first_new);
+    return out;
+  }
+
+  /// One round of gap splitting (RefineOptions::max_gap): the edges whose midpoint lies
+  /// farther than max_gap leaf sides outside G get a vertex there, migrated onto G; each
+  /// triangle is split by its split edges (one: 1-to-2 through the opposite corner; two: the
+  /// corner triangle and the rest by its shorter diagonal; three: 1-to-4). A split whose new
+  /// vertex is involved in an intersecting or degenerate triangle is undone (a few passes), so
+  /// the splitting adds no fold. Later rounds test only edges at vertices the round before
+  /// added (`fresh` and beyond). False if no edge was split.
+  bool split_gaps(std::vector<std::array<int, 3>>& triangles, std::size_t fresh) {
+    std::vector<std::pair<int, int>> edges;
+    edges.reserve(3 * triangles.size() / 2);
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        const int a = t[k], b = t[(k + 1) % 3];
+        if (a < b) edges.emplace_back(a, b);  // each edge once (the mesh is closed, oriented)
+      }
+    std::sort(edges.begin(), edges.end());
+    std::vector<char> far(edges.size(), 0);
+    tbb::parallel_for(std::size_t(0), edges.size(), [&](std::size_t e) {
+      const auto [a, b] = edges[e];
+      if (static_cast<std::size_t>(b) < fresh) return;  // tested in an earlier round (b > a)
+      const double tol = opt_.max_gap * std::min(leaf_side_[a], leaf_side_[b]);
+      // Both ends lie on G: a midpoint within tol of one cannot be farther from G.
+      if ((position_[a] - position_[b]).squaredNorm() <= 4 * tol * tol) return;
+      const Vec3 m = (position_[a] + position_[b]) / 2;
+      // The balls of a's leaf first (cheap, and nearly always one of them is within tol).
+      for (PrimitiveId g : primitives_[a]) {
+        if (!shape_->is_sphere(g)) break;  // sorted: the spheres come first
+        const double r = shape_->sphere(g).radius + tol;
+        if ((m - shape_->sphere(g).centre).squaredNorm() <= r * r) return;
+      }
+      far[e] = !shape_->within(m, tol);
+    });
+    std::vector<std::size_t> split;  // edges with a candidate vertex, in edge order
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      if (far[e]) split.push_back(e);
+    if (split.empty()) return false;
+
+    // Candidates after the current vertices: index first_new + j for split[j].
+    const std::size_t first_new = start_.size(), count = split.size();
+    std::vector<Vec3> from(count), to(count);
+    std::vector<std::vector<PrimitiveId>> prims(count);
+    std::vector<double> side(count);
+    std::vector<Outcome> outcome(count);
+    tbb::parallel_for(std::size_t(0), count, [&](std::size_t j) {
+      const auto [a, b] = edges[split[j]];
+      from[j] = (position_[a] + position_[b]) / 2;
+      point_primitives(from[j], prims[j], side[j]);
+      outcome[j] = migrate(from[j], prims[j], side[j], to[j]);
+    });
+    std::vector<int> mid(edges.size(), -1);
+    for (std::size_t j = 0; j < count; ++j) mid[split[j]] = static_cast<int>(first_new + j);
+    std::vector<std::array<std::size_t, 3>> sides(triangles.size());
+    tbb::parallel_for(std::size_t(0), triangles.size(), [&](std::size_t f) {
+      for (int k = 0; k < 3; ++k) {
+        const int a = triangles[f][k], b = triangles[f][(k + 1) % 3];
+        sides[f][k] = static_cast<std::size_t>(
+            std::lower_bound(edges.begin(), edges.end(), std::make_pair(std::min(a, b), std::max(a, b))) - edges.begin());
+      }
+    });
+    PolygonSoup soup;
+    soup.points = position_;
+    soup.points.insert(soup.points.end(), to.begin(), to.end());
+    std::vector<std::array<int, 3>> out;
+    for (int pass = 0; pass < 4; ++pass) {
+      out = split_triangles(triangles, sides, mid, soup.points);
+      std::vector<int> touched;  // the triangles at candidate vertices
+      for (std::size_t f = 0; f < out.size(); ++f)
+        if (std::any_of(out[f].begin(), out[f].end(), [&](int v) { return v >= static_cast<int>(first_new); }))
+          touched.push_back(static_cast<int>(f));
+      soup.faces.clear();
+      for (const auto& t : out) soup.faces.push_back({t[0], t[1], t[2]});
+      const TriangleDefects d = find_triangle_defects(soup, touched);
+      bool undone = false;
+      for (int v : involved_vertices(d, out))
+        if (v >= static_cast<int>(first_new)) {
+          mid[split[v - first_new]] = -1;
+          undone = true;
+        }
+      if (!undone) break;
+      if (pass == 3) {  // still folding: give up this round's splits
+        std::fill(mid.begin(), mid.end(), -1);
+        out = triangles;
+      }
+    }
+    // Keep the accepted candidates, renumbered in edge order.
+    std::size_t kept = 0;
+    for (std::size_t j = 0; j < count; ++j) {
+      const std::size_t e = split[j];
+      if (mid[e] < 0) continue;
+      const auto [a, b] = edges[e];
+      mid[e] = static_cast<int>(first_new + kept++);
+      // The repair's last resort returns vertices to their start: for a new vertex, the
+      // midpoint of its edge's starts, so the starts stay the fold-free dual of M1, subdivided.
+      start_.push_back((start_[a] + start_[b]) / 2);
+      position_.push_back(to[j]);
+      primitives_.push_back(std::move(prims[j]));
+      leaf_side_.push_back(side[j]);
+      count_outcome(outcome[j]);
+    }
+    if (kept == 0) return false;
+    stats_.vertices_migrated += kept;
+    stats_.gap_splits += kept;
+    triangles = split_triangles(triangles, sides, mid, position_);
+    return true;
+  }
+
+  /// The triangles split by the edges with a vertex (mid[edge] >= 0), as split_gaps describes.
+  static std::vector<std::array<int, 3>> split_triangles(const std::vector<std::array<int, 3>>& triangles,
+                                                         const std::vector<std::array<std::size_t, 3>>& sides,
+                                                         const std::vector<int>& mid, const std::vector<Vec3>& points) {
+    std::vector<std::array<int, 3>> out;
+    out.reserve(triangles.size() + triangles.size() / 8);
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+      const auto& t = triangles[f];
+      const std::array<int, 3> m = {mid[sides[f][0]], mid[sides[f][1]], mid[sides[f][2]]};
+      const int split = (m[0] >= 0) + (m[1] >= 0) + (m[2] >= 0);
+      if (split == 0) {
+        out.push_back(t);
+      } else if (split == 3) {
+        out.push_back({t[0], m[0], m[2]});
+        out.push_back({m[0], t[1], m[1]});
+        out.push_back({m[2], m[1], t[2]});
+        out.push_back({m[0], m[1], m[2]});
+      } else if (split == 1) {
+        const int k = m[0] >= 0 ? 0 : (m[1] >= 0 ? 1 : 2);  // the edge t[k] t[k+1]
+        const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+        out.push_back({a, m[k], c});
+        out.push_back({m[k], b, c});
+      } else {
+        const int k = m[0] < 0 ? 0 : (m[1] < 0 ? 1 : 2);  // the edge kept: t[k] t[k+1]
+        const int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+        const int mb = m[(k + 1) % 3], mc = m[(k + 2) % 3];  // on b-c and on c-a
+        out.push_back({mb, c, mc});                          // the corner at c
+        // The quad a, b, mb, mc by its shorter diagonal.
+        if ((points[a] - points[mb]).squaredNorm() <= (points[b] - points[mc]).squaredNorm()) {
+          out.push_back({a, b, mb});
+          out.push_back({a, mb, mc});
+        } else {
+          out.push_back({a, b, mc});
+          out.push_back({b, mb, mc});
+        }
+      }
+    }
     return out;
   }
 
@@ -482,6 +634,8 @@ RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const MedialSu
   if (opt.subdivisions < 0) throw InvalidInput("refine: subdivisions must be >= 0");
   if (!(opt.max_travel > 0)) throw InvalidInput("refine: max travel must be > 0");
   if (opt.repair_rounds < 0) throw InvalidInput("refine: repair rounds must be >= 0");
+  if (!(opt.max_gap >= 0)) throw InvalidInput("refine: max gap must be >= 0");
+  if (opt.gap_rounds < 0) throw InvalidInput("refine: gap rounds must be >= 0");
   if (m1.faces.size() != m1.mesh.n_faces()) throw InvalidInput("refine: M1 and its faces disagree");
   return Refiner(m1, tree, atoms, opt).run();
 }

@@ -29,6 +29,7 @@ Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) 
   c.b = b;
   c.c1 = first.centre;
   c.r1 = first.radius;
+  c.r2 = second.radius;
   const Vec3 axis = second.centre - first.centre;
   c.length = axis.norm();
   c.u = axis / c.length;
@@ -42,6 +43,16 @@ Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) 
   c.bound_centre = c.c1 + (c.t_lo + half) * c.u;
   c.bound_radius2 = half * half + rim * rim;
   return c;
+}
+
+double hull_distance(const Cone& k, const Vec3& p) {
+  const Vec3 q = p - k.c1;
+  const double x = q.dot(k.u), y = q.cross(k.u).norm();  // a cross product: accurate near the axis
+  const double dr = k.r2 - k.r1;
+  // cos(phi) = 0 only when rounding makes one ball hold the other: the hull is the larger.
+  double t = k.cos_phi > 0 ? (x - k.sin_phi * y / k.cos_phi) / k.length : (dr > 0 ? 1.0 : 0.0);
+  t = std::clamp(t, 0.0, 1.0);
+  return (p - (k.c1 + (t * k.length) * k.u)).norm() - (k.r1 + t * dr);
 }
 
 Vec3 migration_vector(const MedialAtom& sphere, const Vec3& v) {
@@ -483,6 +494,22 @@ bool TargetShape::contains(const Vec3& p) const {
                 }
               });
   return inside;
+}
+
+bool TargetShape::within(const Vec3& p, double tol) const {
+  bool found = false;
+  const double tol2 = tol * tol;
+  bvh_->visit([&](const Box& b) { return !found && b.squared_distance(p) <= tol2; },
+              [&](int i) {
+                if (found) return;
+                if (is_sphere(i)) {
+                  const double r = spheres_[i].radius + tol;
+                  found = (p - spheres_[i].centre).squaredNorm() <= r * r;
+                } else {
+                  found = hull_distance(cone(i), p) <= tol;
+                }
+              });
+  return found;
 }
 
 bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& dir, double& t0,

@@ -9,6 +9,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 namespace mg {
 namespace {
@@ -88,8 +90,41 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
     if (x.info() == y.info()) return;
     candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
   };
-  if (subset)
+  if (subset) {
+    // A local change: only the boxes near the chosen ones can pair with them. Grid cells as
+    // large as the largest chosen box; each chosen box marks the cells it overlaps, and a box
+    // takes part if it overlaps a marked cell.
+    double h = 0;
+    for (const Box& b : chosen)
+      for (int a = 0; a < 3; ++a) h = std::max(h, b.max_coord(a) - b.min_coord(a));
+    if (!chosen.empty() && h > 0) {
+      auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / h)); };
+      auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+        return (static_cast<std::uint64_t>(i & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
+               static_cast<std::uint64_t>(k & 0x1FFFFF);
+      };
+      std::vector<std::uint64_t> marked;
+      for (const Box& b : chosen)
+        for (std::int64_t i = cell(b.min_coord(0)); i <= cell(b.max_coord(0)); ++i)
+          for (std::int64_t j = cell(b.min_coord(1)); j <= cell(b.max_coord(1)); ++j)
+            for (std::int64_t k = cell(b.min_coord(2)); k <= cell(b.max_coord(2)); ++k) marked.push_back(key(i, j, k));
+      std::sort(marked.begin(), marked.end());
+      marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
+      auto near = [&](const Box& b) {
+        const std::int64_t i0 = cell(b.min_coord(0)), i1 = cell(b.max_coord(0));
+        const std::int64_t j0 = cell(b.min_coord(1)), j1 = cell(b.max_coord(1));
+        const std::int64_t k0 = cell(b.min_coord(2)), k1 = cell(b.max_coord(2));
+        if ((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1) > 64) return true;  // a large box: keep
+        for (std::int64_t i = i0; i <= i1; ++i)
+          for (std::int64_t j = j0; j <= j1; ++j)
+            for (std::int64_t k = k0; k <= k1; ++k)
+              if (std::binary_search(marked.begin(), marked.end(), key(i, j, k))) return true;
+        return false;
+      };
+      boxes.erase(std::remove_if(boxes.begin(), boxes.end(), [&](const Box& b) { return !near(b); }), boxes.end());
+    }
     CGAL::box_intersection_d(chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), report);
+  }
   else
     CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), report);
   std::sort(candidates.begin(), candidates.end());

@@ -92,6 +92,7 @@ class GarbCli(unittest.TestCase):
     def test_out_of_range_numbers(self):
         for option, value, message in (("--cone-collar", "-1", "--cone-collar: must be >= 0, not -1"),
                                        ("--repair-rounds", "-2", "--repair-rounds: must be >= 0, not -2"),
+                                       ("--max-gap", "-0.5", "--max-gap: must be >= 0, not -0.5"),
                                        ("--max-travel", "0", "--max-travel: must be > 0, not 0"),
                                        ("--max-travel", "nan", "--max-travel: must be > 0, not nan"),
                                        ("--refine", "x", "--refine: 'x' is not a number")):

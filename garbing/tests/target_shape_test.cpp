@@ -51,6 +51,35 @@ TEST(MigrationVector, ConeVectorPointsAtTheTangentBall) {
   }
 }
 
+TEST(HullDistance, MatchesHandComputedValues) {
+  const mg::Cone cone = mg::make_cone(kA, kB, 0, 1);
+  // Beside the first centre, 2 from the axis: the nearest point is on the first ball's cap.
+  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(0, 2, 0)), 1.0, 1e-15);
+  // (1, 2): over the lateral surface, (y - R(x)) cos(phi) with R(x) = (1 - x / 4) / cos(phi).
+  const double cos_phi = std::sqrt(1 - 0.0625);
+  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(1, 0, 2)), (2 - 0.75 / cos_phi) * cos_phi, 1e-14);
+  // Beyond the second centre on the axis: the second ball.
+  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(3, 0, 0)), 0.5, 1e-15);
+  // Inside: minus the depth in the deepest ball B(c(t), r(t)); on the axis at x = 0.5 it is
+  // the one centred there, t = 0.25, r = 1 - 0.25 / 2.
+  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(0.5, 0, 0)), -0.875, 1e-15);
+}
+
+TEST(TargetShape, WithinIsTheDistanceToTheUnionAgainstATolerance) {
+  const auto s = atoms({kA, kB});
+  const mg::TargetShape shape(s, {{0, 1}});
+  const double cos_phi = std::sqrt(1 - 0.0625);
+  const double over_cone = (2 - 0.75 / cos_phi) * cos_phi;  // (1, 2, 0) to the lateral surface
+  EXPECT_TRUE(shape.within(Vector3d(1, 2, 0), over_cone * (1 + 1e-9)));
+  EXPECT_FALSE(shape.within(Vector3d(1, 2, 0), over_cone * (1 - 1e-9)));
+  EXPECT_TRUE(shape.within(Vector3d(0, -1.5, 0), 0.5 + 1e-12));   // 0.5 from the first ball
+  EXPECT_FALSE(shape.within(Vector3d(0, -1.5, 0), 0.5 - 1e-9));
+  EXPECT_TRUE(shape.within(Vector3d(0.2, 0.1, 0), 0));            // inside
+  // Between the balls (1.22 from both centres), under the lateral surface (R(1) = 0.775).
+  EXPECT_FALSE(mg::TargetShape(s, {}).within(Vector3d(1, 0.7, 0), 0.01));
+  EXPECT_TRUE(shape.within(Vector3d(1, 0.7, 0), 0));
+}
+
 TEST(TargetShape, RaysThroughTheConeSolid) {
   const mg::TargetShape cone_only(atoms({kA, kB}), {{0, 1}});
   // Remove the spheres' contribution by starting between them on a ray across the waist:

@@ -16,6 +16,13 @@ struct RefineOptions {
   int subdivisions = 0;     ///< rounds of 1-to-4 subdivision followed by migration (Figure 14)
   double max_travel = 4.0;  ///< in sides of the vertex's leaf; a longer ray falls back
   int repair_rounds = 8;    ///< rounds of each repair stage (relaxation on G, then pull-back)
+  /// Gap splitting, after the migration and before the repair: an edge whose midpoint lies
+  /// provably farther than max_gap sides of its (smaller) leaf from G is split there, the new
+  /// vertex migrated like --refine's, for up to gap_rounds rounds (triangles split 1-to-2,
+  /// 1-to-3 or 1-to-4 by their split edges). Catches edges bridging a notch of G narrower than
+  /// a leaf. 0: off.
+  double max_gap = 0.5;
+  int gap_rounds = 3;
 };
 
 struct RefineStats {
@@ -26,6 +33,7 @@ struct RefineStats {
   std::size_t fallback_too_far = 0;         ///< the ray reached G beyond max_travel
   std::size_t collapsed_digons = 0;         ///< valence-2 M1 vertices (dual 2-gons) dropped
   std::size_t centroid_fans = 0;  ///< dual faces fanned from an added centre (see triangulate)
+  std::size_t gap_splits = 0;     ///< edges split by the gap test (max_gap), all rounds
   /// Defects found right after each migration pass (the first, then one per subdivision
   /// round), summed; and what is left at the end.
   std::size_t intersecting_before = 0, degenerate_before = 0;
@@ -50,7 +58,8 @@ struct RefinedMesh {
 /// @param m1    from extract_coarse_mesh(tree)
 /// @param tree  from build_octree(atoms): its cone_pairs are G's cones
 /// @param atoms the medial surface the tree was built from
-/// @pre opt.subdivisions >= 0, opt.max_travel > 0, opt.repair_rounds >= 0  @throws InvalidInput
+/// @pre opt.subdivisions >= 0, opt.max_travel > 0, opt.repair_rounds >= 0, opt.max_gap >= 0,
+///      opt.gap_rounds >= 0  @throws InvalidInput
 RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const MedialSurface& atoms,
                         const RefineOptions& opt = {});
 

@@ -55,6 +55,7 @@ struct Cone {
   int a = -1, b = -1;        ///< atom indices
   Eigen::Vector3d c1, u;     ///< first centre, unit axis toward the second
   double r1 = 0, length = 0; ///< first radius, L = |c2 - c1|
+  double r2 = 0;             ///< second radius
   double sin_phi = 0, cos_phi = 1;  ///< sin(phi) = (r1 - r2) / L
   double t_lo = 0, t_hi = 0;        ///< axial range of the lateral surface
   double rho_lo = 0, rho_hi = 0;    ///< its radius at t_lo and t_hi
@@ -66,6 +67,13 @@ struct Cone {
 
 /// Builds the cone of atoms a and b. @pre the balls intersect and neither contains the other
 Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b);
+
+/// min over t in [0, 1] of |p - c(t)| - r(t), c and r linear from (c1, r1) to (c2, r2): the
+/// distance from p to the cone's solid (the convex hull of its two balls) when p is outside
+/// it; when inside, minus the depth of p in the deepest ball B(c(t), r(t)), a lower bound on
+/// its depth in the solid. Closed form: the stationary t has the foot of p on the axis ahead
+/// of c(t) by tan(phi) times p's distance from the axis.
+double hull_distance(const Cone& k, const Eigen::Vector3d& p);
 
 /// The per-primitive migration vector of ALGORITHM.md: with p the foot on the primitive's axis
 /// of the surface normal through v and r the radius there,
@@ -136,6 +144,10 @@ class TargetShape {
 
   /// Distance from p to G (unsigned), with the same exactness as closest_point().
   double distance(const Eigen::Vector3d& p) const { return (closest_point(p) - p).norm(); }
+
+  /// Whether the union comes within `tol` of p (p inside it, or at most tol outside): exact
+  /// for spheres and cones. Stops at the first primitive that does.
+  bool within(const Eigen::Vector3d& p, double tol) const;
 
   /// Points of G, uniform in area: `count` points spread over the primitives' surfaces in
   /// proportion to their areas (sphere: 4 pi r^2, cone: its lateral area), each uniform on its
