@@ -1,5 +1,6 @@
 #include "garbing/refine_mesh.h"
 
+#include "garbing/detail/box_grid.h"
 #include "garbing/errors.h"
 #include "garbing/triangle_defects.h"
 
@@ -381,12 +382,38 @@ class Refiner {
             std::lower_bound(edges.begin(), edges.end(), std::make_pair(std::min(a, b), std::max(a, b))) - edges.begin());
       }
     });
+    // The checks need only the triangles near a candidate: those whose box is near the box
+    // of a triangle with a split edge grown to hold the candidates on its edges.
+    std::vector<Eigen::AlignedBox3d> probes;
+    auto box_of = [&](const std::array<int, 3>& t) {
+      Eigen::AlignedBox3d b(position_[t[0]]);
+      b.extend(position_[t[1]]);
+      b.extend(position_[t[2]]);
+      return b;
+    };
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+      bool any = false;
+      Eigen::AlignedBox3d b = box_of(triangles[f]);
+      for (std::size_t e : sides[f])
+        if (mid[e] >= 0) {
+          b.extend(to[mid[e] - first_new]);
+          any = true;
+        }
+      if (any) probes.push_back(b);
+    }
+    const detail::BoxGrid grid(probes);
+    std::vector<std::array<int, 3>> local;
+    std::vector<std::array<std::size_t, 3>> local_sides;
+    for (std::size_t f = 0; f < triangles.size(); ++f)
+      if (grid.near(box_of(triangles[f]))) {
+        local.push_back(triangles[f]);
+        local_sides.push_back(sides[f]);
+      }
     PolygonSoup soup;
     soup.points = position_;
     soup.points.insert(soup.points.end(), to.begin(), to.end());
-    std::vector<std::array<int, 3>> out;
     for (int pass = 0; pass < 4; ++pass) {
-      out = split_triangles(triangles, sides, mid, soup.points);
+      const std::vector<std::array<int, 3>> out = split_triangles(local, local_sides, mid, soup.points);
       std::vector<int> touched;  // the triangles at candidate vertices
       for (std::size_t f = 0; f < out.size(); ++f)
         if (std::any_of(out[f].begin(), out[f].end(), [&](int v) { return v >= static_cast<int>(first_new); }))
@@ -401,10 +428,7 @@ class Refiner {
           undone = true;
         }
       if (!undone) break;
-      if (pass == 3) {  // still folding: give up this round's splits
-        std::fill(mid.begin(), mid.end(), -1);
-        out = triangles;
-      }
+      if (pass == 3) std::fill(mid.begin(), mid.end(), -1);  // still folding: no split this round
     }
     // Keep the accepted candidates, renumbered in edge order.
     std::size_t kept = 0;

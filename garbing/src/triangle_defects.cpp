@@ -1,6 +1,7 @@
 // find_triangle_defects(): the CGAL translation unit of mg::garbing for exact triangle tests.
 #include "garbing/triangle_defects.h"
 
+#include "garbing/detail/box_grid.h"
 #include "garbing/errors.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -9,8 +10,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
 
 namespace mg {
 namespace {
@@ -43,15 +42,28 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
   std::vector<char> in_subset(soup.faces.size(), subset ? 0 : 1);
   if (subset)
     for (int f : *subset) in_subset[f] = 1;
+  std::vector<CGAL::Bbox_3> bbox(soup.faces.size());
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
     const int i = static_cast<int>(f);
+    bbox[f] = corner(i, 0).bbox() + corner(i, 1).bbox() + corner(i, 2).bbox();
+  }
+  // A local change (subset): only the boxes near the subset's can pair with them.
+  auto eigen_box = [](const CGAL::Bbox_3& b) {
+    return Eigen::AlignedBox3d(Eigen::Vector3d(b.xmin(), b.ymin(), b.zmin()), Eigen::Vector3d(b.xmax(), b.ymax(), b.zmax()));
+  };
+  std::vector<Eigen::AlignedBox3d> probes;
+  if (subset)
+    for (int f : *subset) probes.push_back(eigen_box(bbox[f]));
+  const detail::BoxGrid grid(probes);
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    const int i = static_cast<int>(f);
+    if (!in_subset[f] && !grid.near(eigen_box(bbox[f]))) continue;
     if (CGAL::collinear(corner(i, 0), corner(i, 1), corner(i, 2))) {
       if (in_subset[f]) out.degenerate_faces.push_back(i);
       continue;
     }
-    const auto b = corner(i, 0).bbox() + corner(i, 1).bbox() + corner(i, 2).bbox();
-    boxes.emplace_back(b, i);
-    if (subset && in_subset[f]) chosen.emplace_back(b, i);
+    boxes.emplace_back(bbox[f], i);
+    if (subset && in_subset[f]) chosen.emplace_back(bbox[f], i);
   }
 
   auto intersect = [&](int f, int g) {
@@ -91,38 +103,6 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
     candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
   };
   if (subset) {
-    // A local change: only the boxes near the chosen ones can pair with them. Grid cells as
-    // large as the largest chosen box; each chosen box marks the cells it overlaps, and a box
-    // takes part if it overlaps a marked cell.
-    double h = 0;
-    for (const Box& b : chosen)
-      for (int a = 0; a < 3; ++a) h = std::max(h, b.max_coord(a) - b.min_coord(a));
-    if (!chosen.empty() && h > 0) {
-      auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / h)); };
-      auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
-        return (static_cast<std::uint64_t>(i & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
-               static_cast<std::uint64_t>(k & 0x1FFFFF);
-      };
-      std::vector<std::uint64_t> marked;
-      for (const Box& b : chosen)
-        for (std::int64_t i = cell(b.min_coord(0)); i <= cell(b.max_coord(0)); ++i)
-          for (std::int64_t j = cell(b.min_coord(1)); j <= cell(b.max_coord(1)); ++j)
-            for (std::int64_t k = cell(b.min_coord(2)); k <= cell(b.max_coord(2)); ++k) marked.push_back(key(i, j, k));
-      std::sort(marked.begin(), marked.end());
-      marked.erase(std::unique(marked.begin(), marked.end()), marked.end());
-      auto near = [&](const Box& b) {
-        const std::int64_t i0 = cell(b.min_coord(0)), i1 = cell(b.max_coord(0));
-        const std::int64_t j0 = cell(b.min_coord(1)), j1 = cell(b.max_coord(1));
-        const std::int64_t k0 = cell(b.min_coord(2)), k1 = cell(b.max_coord(2));
-        if ((i1 - i0 + 1) * (j1 - j0 + 1) * (k1 - k0 + 1) > 64) return true;  // a large box: keep
-        for (std::int64_t i = i0; i <= i1; ++i)
-          for (std::int64_t j = j0; j <= j1; ++j)
-            for (std::int64_t k = k0; k <= k1; ++k)
-              if (std::binary_search(marked.begin(), marked.end(), key(i, j, k))) return true;
-        return false;
-      };
-      boxes.erase(std::remove_if(boxes.begin(), boxes.end(), [&](const Box& b) { return !near(b); }), boxes.end());
-    }
     CGAL::box_intersection_d(chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), report);
   }
   else
