@@ -7,9 +7,13 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 namespace mg {
 namespace {
@@ -19,6 +23,89 @@ using Point = K::Point_3;
 using Triangle = K::Triangle_3;
 using Segment = K::Segment_3;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+
+/// Every pair (i < j, by info) of closed boxes that overlap, sorted: the broad phase of the full
+/// check, in parallel. A grid of cells as large as the 90th percentile of the boxes' largest
+/// sides; each box is listed in the cells it overlaps (one over more than 64 cells is tested
+/// against every box instead), and an overlapping pair is reported only in the cell holding
+/// the low corner of the two boxes' intersection, so once.
+std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& boxes) {
+  std::vector<std::array<int, 2>> out;
+  if (boxes.size() < 2) return out;
+  std::vector<double> extent(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    for (int a = 0; a < 3; ++a) extent[i] = std::max(extent[i], boxes[i].max_coord(a) - boxes[i].min_coord(a));
+  const auto nth = extent.begin() + static_cast<std::ptrdiff_t>(extent.size() * 9 / 10);
+  std::nth_element(extent.begin(), nth, extent.end());
+  const double h = *nth;  // > 0: a triangle that is not degenerate has distinct corners
+  auto overlap = [&](const Box& x, const Box& y) {
+    for (int a = 0; a < 3; ++a)
+      if (x.min_coord(a) > y.max_coord(a) || y.min_coord(a) > x.max_coord(a)) return false;
+    return true;
+  };
+  auto pair_of = [](const Box& x, const Box& y) {
+    return std::array<int, 2>{std::min(x.info(), y.info()), std::max(x.info(), y.info())};
+  };
+  auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / h)); };
+  auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (static_cast<std::uint64_t>(i & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
+           static_cast<std::uint64_t>(k & 0x1FFFFF);
+  };
+  std::vector<std::array<std::int64_t, 6>> range(boxes.size());
+  std::vector<std::size_t> start(boxes.size() + 1, 0);
+  std::vector<int> big;
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    auto& r = range[b];
+    for (int a = 0; a < 3; ++a) {
+      r[a] = cell(boxes[b].min_coord(a));
+      r[3 + a] = cell(boxes[b].max_coord(a));
+    }
+    const std::int64_t n = (r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1);
+    if (n > 64) big.push_back(static_cast<int>(b));
+    start[b + 1] = start[b] + (n > 64 ? 0 : static_cast<std::size_t>(n));
+  }
+  std::vector<std::pair<std::uint64_t, int>> entries(start.back());  // (cell, box position)
+  tbb::parallel_for(std::size_t(0), boxes.size(), [&](std::size_t b) {
+    if (start[b + 1] == start[b]) return;
+    const auto& r = range[b];
+    std::size_t e = start[b];
+    for (std::int64_t i = r[0]; i <= r[3]; ++i)
+      for (std::int64_t j = r[1]; j <= r[4]; ++j)
+        for (std::int64_t k = r[2]; k <= r[5]; ++k) entries[e++] = {key(i, j, k), static_cast<int>(b)};
+  });
+  tbb::parallel_sort(entries.begin(), entries.end());
+  std::vector<std::size_t> runs;
+  for (std::size_t e = 0; e < entries.size(); ++e)
+    if (e == 0 || entries[e].first != entries[e - 1].first) runs.push_back(e);
+  runs.push_back(entries.size());
+  tbb::enumerable_thread_specific<std::vector<std::array<int, 2>>> found;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size() - 1, 64), [&](const tbb::blocked_range<std::size_t>& rr) {
+    auto& mine = found.local();
+    for (std::size_t r = rr.begin(); r != rr.end(); ++r) {
+      const std::uint64_t here = entries[runs[r]].first;
+      for (std::size_t x = runs[r]; x < runs[r + 1]; ++x)
+        for (std::size_t y = x + 1; y < runs[r + 1]; ++y) {
+          const Box& bx = boxes[entries[x].second];
+          const Box& by = boxes[entries[y].second];
+          if (!overlap(bx, by)) continue;
+          const std::uint64_t low = key(cell(std::max(bx.min_coord(0), by.min_coord(0))),
+                                        cell(std::max(bx.min_coord(1), by.min_coord(1))),
+                                        cell(std::max(bx.min_coord(2), by.min_coord(2))));
+          if (low == here) mine.push_back(pair_of(bx, by));
+        }
+    }
+  });
+  tbb::parallel_for(std::size_t(0), big.size(), [&](std::size_t i) {
+    auto& mine = found.local();
+    const Box& bx = boxes[big[i]];
+    for (const Box& by : boxes)
+      if (by.info() != bx.info() && overlap(bx, by)) mine.push_back(pair_of(bx, by));
+  });
+  for (auto& part : found) out.insert(out.end(), part.begin(), part.end());
+  tbb::parallel_sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
 
 }  // namespace
 
@@ -95,20 +182,18 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
     return CGAL::do_intersect(opposite_f, tg) || CGAL::do_intersect(opposite_g, tf);
   };
 
-  // Candidate pairs from the boxes (sequential), then the exact tests in parallel; the pairs
-  // come out sorted whatever the thread count.
+  // Candidate pairs from the boxes, then the exact tests in parallel; the pairs come out
+  // sorted whatever the thread count.
   std::vector<std::array<int, 2>> candidates;
-  auto report = [&](const Box& x, const Box& y) {
-    if (x.info() == y.info()) return;
-    candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
-  };
   if (subset) {
-    CGAL::box_intersection_d(chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), report);
+    CGAL::box_intersection_d(chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+      if (x.info() != y.info()) candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
+    });
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  } else {
+    candidates = overlapping_pairs(boxes);
   }
-  else
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), report);
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   std::vector<char> hit(candidates.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& r) {
