@@ -402,6 +402,63 @@ struct TargetShape::Bvh {
     }
   }
 
+  /// Depth first along the segment origin + t dir, t in [0, limit()], the nearer child first;
+  /// `limit()` may shrink as primitives are visited, and nodes entered beyond it are skipped.
+  /// Stops when `visit_primitive` returns false.
+  template <class Limit, class Visit>
+  void visit_segment(const Vec3& origin, const Vec3& dir, Limit&& limit, Visit&& visit_primitive) const {
+    if (nodes.empty()) return;
+    const Vec3 inv = dir.cwiseInverse();
+    // Slabs by the direction's signs (the same products as Box::clip, without its swaps);
+    // Box::clip itself when a component of dir is 0 (its NaN guard).
+    const bool generic = dir[0] != 0 && dir[1] != 0 && dir[2] != 0;
+    int near_side[3];
+    for (int k = 0; k < 3; ++k) near_side[k] = inv[k] < 0;
+    auto clip = [&](const Box& b, double& t0, double& t1) {
+      if (!generic) return b.clip(origin, inv, t0, t1);
+      for (int k = 0; k < 3; ++k) {
+        const double enter = ((near_side[k] ? b.hi : b.lo)[k] - origin[k]) * inv[k];
+        const double leave = ((near_side[k] ? b.lo : b.hi)[k] - origin[k]) * inv[k];
+        t0 = std::max(t0, enter);
+        t1 = std::min(t1, leave);
+      }
+      return t0 <= t1;
+    };
+    std::pair<int, double> stack[128];  // (node, parameter where the segment enters its box)
+    int top = 0;
+    double a = 0, z = limit();
+    if (!clip(nodes[0].box, a, z)) return;
+    stack[top++] = {0, a};
+    while (top > 0) {
+      const auto [id, entry] = stack[--top];
+      if (entry > limit()) continue;
+      const Node& n = nodes[id];
+      if (n.right < 0) {
+        for (int i = n.first; i < n.first + n.count; ++i) {
+          double b0 = 0, b1 = limit();
+          if (clip(boxes[i], b0, b1) && !visit_primitive(order[i])) return;
+        }
+        continue;
+      }
+      double l0 = 0, l1 = limit(), r0 = 0, r1 = limit();
+      const bool left = clip(nodes[id + 1].box, l0, l1);
+      const bool right = clip(nodes[n.right].box, r0, r1);
+      if (left && right) {
+        if (l0 <= r0) {
+          stack[top++] = {n.right, r0};
+          stack[top++] = {id + 1, l0};
+        } else {
+          stack[top++] = {id + 1, l0};
+          stack[top++] = {n.right, r0};
+        }
+      } else if (left) {
+        stack[top++] = {id + 1, l0};
+      } else if (right) {
+        stack[top++] = {n.right, r0};
+      }
+    }
+  }
+
   /// Visits every primitive whose box passes `keep_box`, in no particular order.
   template <class KeepBox, class Visit>
   void visit(KeepBox&& keep_box, Visit&& visit_primitive) const {
@@ -537,17 +594,21 @@ bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max,
           if (ray_interval(i, v, dir, a, z) && z >= from && a <= t_max) runs.emplace_back(a, z);
         });
   };
-  collect(0);
+  // Outside, only the first entry matters: the segment shrinks to it as entries are found,
+  // nearer boxes first. An interval holding t = 0 (v inside) is never cut off: its box holds v.
   inside = false;
-  for (const auto& [a, z] : runs)
-    if (a <= 0 && z >= 0) {
+  double first = kInf;
+  bvh_->visit_segment(v, dir, [&] { return std::min(first, t_max); }, [&](int i) {
+    double a, z;
+    if (!ray_interval(i, v, dir, a, z) || z < 0) return true;
+    if (a <= 0) {
       inside = true;
-      break;
+      return false;
     }
+    if (a <= t_max) first = std::min(first, a);
+    return true;
+  });
   if (!inside) {
-    double first = kInf;
-    for (const auto& [a, z] : runs)
-      if (a > 0) first = std::min(first, a);
     if (first > t_max) return false;
     t = first;
     return true;
