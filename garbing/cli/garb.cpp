@@ -182,6 +182,7 @@ int garb_main(int argc, char** argv) {
                {"collapsed_digons", r.collapsed_digons},
                {"max_gap", refine.max_gap},
                {"gap_splits", r.gap_splits},
+               {"gap_splits_undone", r.gap_undone},
                {"intersecting_pairs_before_repair", r.intersecting_before},
                {"degenerate_before_repair", r.degenerate_before},
                {"intersecting_pairs_after_repair", r.intersecting_after},

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 namespace mg {
 namespace {
@@ -327,8 +328,9 @@ class Refiner {
   /// farther than max_gap leaf sides outside G get a vertex there, migrated onto G; each
   /// triangle is split by its split edges (one: 1-to-2 through the opposite corner; two: the
   /// corner triangle and the rest by its shorter diagonal; three: 1-to-4). A split whose new
-  /// vertex is involved in an intersecting or degenerate triangle is undone (a few passes), so
-  /// the splitting adds no fold. Later rounds test only edges at vertices the round before
+  /// vertex is involved in an intersecting or degenerate triangle is undone (passes until none
+  /// is: this includes one whose triangles meet a fold that was there before), so the
+  /// splitting adds no fold. Later rounds test only edges at vertices the round before
   /// added (`fresh` and beyond). False if no edge was split.
   bool split_gaps(std::vector<std::array<int, 3>>& triangles, std::size_t fresh) {
     std::vector<std::pair<int, int>> edges;
@@ -378,8 +380,11 @@ class Refiner {
     tbb::parallel_for(std::size_t(0), triangles.size(), [&](std::size_t f) {
       for (int k = 0; k < 3; ++k) {
         const int a = triangles[f][k], b = triangles[f][(k + 1) % 3];
-        sides[f][k] = static_cast<std::size_t>(
-            std::lower_bound(edges.begin(), edges.end(), std::make_pair(std::min(a, b), std::max(a, b))) - edges.begin());
+        const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+        const auto it = std::lower_bound(edges.begin(), edges.end(), key);
+        if (it == edges.end() || *it != key)  // every edge is listed once from its a < b side
+          throw std::logic_error("gap splitting: the triangles are not a closed oriented mesh");
+        sides[f][k] = static_cast<std::size_t>(it - edges.begin());
       }
     });
     // The checks need only the triangles near a candidate: those whose box is near the box
@@ -412,7 +417,8 @@ class Refiner {
     PolygonSoup soup;
     soup.points = position_;
     soup.points.insert(soup.points.end(), to.begin(), to.end());
-    for (int pass = 0; pass < 4; ++pass) {
+    // Each pass that undoes something undoes at least one candidate: this ends.
+    while (true) {
       const std::vector<std::array<int, 3>> out = split_triangles(local, local_sides, mid, soup.points);
       std::vector<int> touched;  // the triangles at candidate vertices
       for (std::size_t f = 0; f < out.size(); ++f)
@@ -423,12 +429,12 @@ class Refiner {
       const TriangleDefects d = find_triangle_defects(soup, touched);
       bool undone = false;
       for (int v : involved_vertices(d, out))
-        if (v >= static_cast<int>(first_new)) {
+        if (v >= static_cast<int>(first_new) && mid[split[v - first_new]] >= 0) {
           mid[split[v - first_new]] = -1;
+          ++stats_.gap_undone;
           undone = true;
         }
       if (!undone) break;
-      if (pass == 3) std::fill(mid.begin(), mid.end(), -1);  // still folding: no split this round
     }
     // Keep the accepted candidates, renumbered in edge order.
     std::size_t kept = 0;

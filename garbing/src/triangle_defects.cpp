@@ -12,7 +12,6 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 
 namespace mg {
@@ -46,23 +45,18 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& boxes)
   auto pair_of = [](const Box& x, const Box& y) {
     return std::array<int, 2>{std::min(x.info(), y.info()), std::max(x.info(), y.info())};
   };
-  auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / h)); };
-  auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return (static_cast<std::uint64_t>(i & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
-           static_cast<std::uint64_t>(k & 0x1FFFFF);
+  auto eigen_box = [](const Box& b) {
+    return Eigen::AlignedBox3d(Eigen::Vector3d(b.min_coord(0), b.min_coord(1), b.min_coord(2)),
+                               Eigen::Vector3d(b.max_coord(0), b.max_coord(1), b.max_coord(2)));
   };
   std::vector<std::array<std::int64_t, 6>> range(boxes.size());
   std::vector<std::size_t> start(boxes.size() + 1, 0);
-  std::vector<int> big;
+  std::vector<int> big;  // over more than 64 cells (or not finite): tested against every box
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     auto& r = range[b];
-    for (int a = 0; a < 3; ++a) {
-      r[a] = cell(boxes[b].min_coord(a));
-      r[3 + a] = cell(boxes[b].max_coord(a));
-    }
-    const std::int64_t n = (r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1);
-    if (n > 64) big.push_back(static_cast<int>(b));
-    start[b + 1] = start[b] + (n > 64 ? 0 : static_cast<std::size_t>(n));
+    const bool gridded = detail::cell_range(eigen_box(boxes[b]), h, &r[0], &r[3]);
+    if (!gridded) big.push_back(static_cast<int>(b));
+    start[b + 1] = start[b] + (gridded ? static_cast<std::size_t>((r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1)) : 0);
   }
   std::vector<std::pair<std::uint64_t, int>> entries(start.back());  // (cell, box position)
   tbb::parallel_for(std::size_t(0), boxes.size(), [&](std::size_t b) {
@@ -71,7 +65,7 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& boxes)
     std::size_t e = start[b];
     for (std::int64_t i = r[0]; i <= r[3]; ++i)
       for (std::int64_t j = r[1]; j <= r[4]; ++j)
-        for (std::int64_t k = r[2]; k <= r[5]; ++k) entries[e++] = {key(i, j, k), static_cast<int>(b)};
+        for (std::int64_t k = r[2]; k <= r[5]; ++k) entries[e++] = {detail::cell_key(i, j, k), static_cast<int>(b)};
   });
   tbb::parallel_sort(entries.begin(), entries.end());
   std::vector<std::size_t> runs;
@@ -88,9 +82,11 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& boxes)
           const Box& bx = boxes[entries[x].second];
           const Box& by = boxes[entries[y].second];
           if (!overlap(bx, by)) continue;
-          const std::uint64_t low = key(cell(std::max(bx.min_coord(0), by.min_coord(0))),
-                                        cell(std::max(bx.min_coord(1), by.min_coord(1))),
-                                        cell(std::max(bx.min_coord(2), by.min_coord(2))));
+          // The overlap's low corner lies in both boxes' cell ranges: its cell is one of theirs.
+          std::int64_t c[3];
+          for (int a = 0; a < 3; ++a)
+            c[a] = std::max(range[entries[x].second][a], range[entries[y].second][a]);
+          const std::uint64_t low = detail::cell_key(c[0], c[1], c[2]);
           if (low == here) mine.push_back(pair_of(bx, by));
         }
     }

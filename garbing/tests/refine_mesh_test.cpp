@@ -151,6 +151,18 @@ TEST(RefineMesh, GapSplittingFollowsASharpCrease) {
   expect_sound(split.mesh, "two balls, gap splitting");
   EXPECT_EQ(split.stats.intersecting_before, 0u);  // the splitting adds no fold
   for (const Vector3d& p : points(split.mesh)) EXPECT_LT(shape.distance(p), 1e-9) << p.transpose();
+  // The same at one and two threads.
+  mg::PolygonSoup one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = mg::soup_from_mesh(mg::refine_mesh(m1, tree, s).mesh);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = mg::soup_from_mesh(mg::refine_mesh(m1, tree, s).mesh);
+  }
+  EXPECT_EQ(one.faces, two.faces);
+  EXPECT_EQ(one.points, two.points);
 }
 
 TEST(RefineMesh, RefusesBadOptions) {

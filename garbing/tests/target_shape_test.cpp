@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "atom_sets.h"
 
@@ -78,6 +80,65 @@ TEST(TargetShape, WithinIsTheDistanceToTheUnionAgainstATolerance) {
   // Between the balls (1.22 from both centres), under the lateral surface (R(1) = 0.775).
   EXPECT_FALSE(mg::TargetShape(s, {}).within(Vector3d(1, 0.7, 0), 0.01));
   EXPECT_TRUE(shape.within(Vector3d(1, 0.7, 0), 0));
+}
+
+/// line_to_boundary against the definition, from every primitive's interval: from outside,
+/// the smallest entry in (0, t_max]; from inside, where the merged run holding t = 0 ends
+/// toward negative t. Random lines through a blob of balls and their cones, some axis-parallel.
+TEST(TargetShape, LineToBoundaryMatchesAllIntervals) {
+  const auto s = mg_test::blob(40, 0.1, 0.35, 5);
+  mg::ConeOptions every;
+  every.min_circle_ratio = 0;
+  every.max_collar = 0;
+  const mg::TargetShape shape(s, mg::cone_pairs(s, every));
+  ASSERT_GT(shape.cone_count(), 20u);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> box(-1.3, 1.3), unit(-1, 1);
+  int inside_count = 0, hits = 0;
+  for (int n = 0; n < 2000; ++n) {
+    const Vector3d v(box(rng), box(rng), box(rng));
+    Vector3d dir(unit(rng), unit(rng), unit(rng));
+    if (n % 10 == 0) dir = Vector3d::Unit(n / 10 % 3);  // components equal to 0
+    const double t_max = 0.6;
+    std::vector<std::pair<double, double>> runs;
+    const int total = static_cast<int>(shape.sphere_count() + shape.cone_count());
+    for (int i = 0; i < total; ++i) {
+      double a, z;
+      if (shape.ray_interval(i, v, dir, a, z)) runs.emplace_back(a, z);
+    }
+    bool inside = false;
+    for (const auto& [a, z] : runs) inside = inside || (a <= 0 && z >= 0);
+    double expected = 0;
+    bool found;
+    if (!inside) {
+      double first = INFINITY;
+      for (const auto& [a, z] : runs)
+        if (a > 0 && a <= t_max) first = std::min(first, a);
+      found = first <= t_max;
+      expected = first;
+    } else {
+      std::sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+      double end = 0;
+      for (const auto& [a, z] : runs) {
+        if (z < end - 1e-12 * (1 + t_max)) break;
+        end = std::min(end, a);
+      }
+      found = end >= -t_max;
+      expected = end;
+    }
+    double t = 0;
+    bool got_inside = false;
+    const bool got = shape.line_to_boundary(v, dir, t_max, t, got_inside);
+    ASSERT_EQ(got_inside, inside) << n;
+    ASSERT_EQ(got, found) << n;
+    if (found) {
+      EXPECT_EQ(t, expected) << n;
+    }
+    inside_count += inside;
+    hits += found;
+  }
+  EXPECT_GT(inside_count, 100);
+  EXPECT_GT(hits, 500);
 }
 
 TEST(TargetShape, RaysThroughTheConeSolid) {

@@ -34,6 +34,7 @@ struct RefineStats {
   std::size_t collapsed_digons = 0;         ///< valence-2 M1 vertices (dual 2-gons) dropped
   std::size_t centroid_fans = 0;  ///< dual faces fanned from an added centre (see triangulate)
   std::size_t gap_splits = 0;     ///< edges split by the gap test (max_gap), all rounds
+  std::size_t gap_undone = 0;     ///< candidate gap splits undone: their vertex folded
   /// Defects found right after each migration pass (the first, then one per subdivision
   /// round), summed; and what is left at the end.
   std::size_t intersecting_before = 0, degenerate_before = 0;
