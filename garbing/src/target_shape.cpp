@@ -576,26 +576,10 @@ bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& di
 
 bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max, double& t,
                                    bool& inside) const {
-  // First the segment [0, t_max]: every interval meeting it. One containing t = 0 means v is
-  // inside; otherwise the first entry is the smallest start. Only from inside (rare: M1 lies
-  // outside G, within a leaf) the segment [-t_max, t_max] is searched again.
-  const Vec3 inv = dir.cwiseInverse();
-  thread_local std::vector<std::pair<double, double>> runs;  // in units of dir from v
-  auto collect = [&](double from) {
-    runs.clear();
-    const Vec3 start = v + from * dir;
-    bvh_->visit(
-        [&](const Box& b) {
-          double a = 0, z = t_max - from;
-          return b.clip(start, inv, a, z);
-        },
-        [&](int i) {
-          double a, z;
-          if (ray_interval(i, v, dir, a, z) && z >= from && a <= t_max) runs.emplace_back(a, z);
-        });
-  };
-  // Outside, only the first entry matters: the segment shrinks to it as entries are found,
-  // nearer boxes first. An interval holding t = 0 (v inside) is never cut off: its box holds v.
+  // Outside, only the first entry matters: depth first along [0, t_max], the segment cut at
+  // each entry found, nearer boxes first. An interval holding t = 0 (v inside) is never cut
+  // off (its box holds v) and ends the walk. Only from inside (rare: M1 lies outside G, within
+  // a leaf) is the whole segment [-t_max, t_max] collected.
   inside = false;
   double first = kInf;
   bvh_->visit_segment(v, dir, [&] { return std::min(first, t_max); }, [&](int i) {
@@ -613,7 +597,13 @@ bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max,
     t = first;
     return true;
   }
-  collect(-t_max);
+  thread_local std::vector<std::pair<double, double>> runs;  // in units of dir from v
+  runs.clear();
+  bvh_->visit_segment(v - t_max * dir, dir, [&] { return 2 * t_max; }, [&](int i) {
+    double a, z;
+    if (ray_interval(i, v, dir, a, z) && z >= -t_max && a <= t_max) runs.emplace_back(a, z);
+    return true;
+  });
   // Leave the union toward negative t: merge the runs containing 0 downward.
   std::sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
   const double slack = 1e-12 * (1 + t_max);
