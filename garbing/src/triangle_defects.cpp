@@ -23,43 +23,35 @@ using Triangle = K::Triangle_3;
 using Segment = K::Segment_3;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 
-/// Every pair (i < j, by info) of closed boxes that overlap, sorted: the broad phase of the full
-/// check, in parallel. A grid of cells as large as the 90th percentile of the boxes' largest
-/// sides; each box is listed in the cells it overlaps (one over more than 64 cells is tested
-/// against every box instead), and an overlapping pair is reported only in the cell holding
-/// the low corner of the two boxes' intersection, so once.
-std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& boxes) {
+/// Every pair (f < g) of the faces `ids` whose closed boxes (`boxes`, by face) overlap, sorted:
+/// the broad phase of the full check, in parallel. A grid of cells as large as the 90th
+/// percentile of the boxes' largest sides; each box is listed in the cells it overlaps (one
+/// over more than 64 cells is tested against every box instead), and an overlapping pair is
+/// reported only in the cell holding the low corner of the two boxes' intersection, so once.
+std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Eigen::AlignedBox3d>& face_boxes,
+                                                  const std::vector<int>& ids) {
   std::vector<std::array<int, 2>> out;
-  if (boxes.size() < 2) return out;
-  std::vector<double> extent(boxes.size());
-  for (std::size_t i = 0; i < boxes.size(); ++i)
-    for (int a = 0; a < 3; ++a) extent[i] = std::max(extent[i], boxes[i].max_coord(a) - boxes[i].min_coord(a));
+  if (ids.size() < 2) return out;
+  std::vector<double> extent(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) extent[i] = face_boxes[ids[i]].sizes().maxCoeff();
   const auto nth = extent.begin() + static_cast<std::ptrdiff_t>(extent.size() * 9 / 10);
   std::nth_element(extent.begin(), nth, extent.end());
   const double h = *nth;  // > 0: a triangle that is not degenerate has distinct corners
-  auto overlap = [&](const Box& x, const Box& y) {
-    for (int a = 0; a < 3; ++a)
-      if (x.min_coord(a) > y.max_coord(a) || y.min_coord(a) > x.max_coord(a)) return false;
-    return true;
+  auto box = [&](std::size_t b) -> const Eigen::AlignedBox3d& { return face_boxes[ids[b]]; };
+  auto pair_of = [&](std::size_t x, std::size_t y) {
+    return std::array<int, 2>{std::min(ids[x], ids[y]), std::max(ids[x], ids[y])};
   };
-  auto pair_of = [](const Box& x, const Box& y) {
-    return std::array<int, 2>{std::min(x.info(), y.info()), std::max(x.info(), y.info())};
-  };
-  auto eigen_box = [](const Box& b) {
-    return Eigen::AlignedBox3d(Eigen::Vector3d(b.min_coord(0), b.min_coord(1), b.min_coord(2)),
-                               Eigen::Vector3d(b.max_coord(0), b.max_coord(1), b.max_coord(2)));
-  };
-  std::vector<std::array<std::int64_t, 6>> range(boxes.size());
-  std::vector<std::size_t> start(boxes.size() + 1, 0);
-  std::vector<int> big;  // over more than 64 cells (or not finite): tested against every box
-  for (std::size_t b = 0; b < boxes.size(); ++b) {
+  std::vector<std::array<std::int64_t, 6>> range(ids.size());
+  std::vector<std::size_t> start(ids.size() + 1, 0);
+  std::vector<std::size_t> big;  // over more than 64 cells (or not finite): tested against every box
+  for (std::size_t b = 0; b < ids.size(); ++b) {
     auto& r = range[b];
-    const bool gridded = detail::cell_range(eigen_box(boxes[b]), h, &r[0], &r[3]);
-    if (!gridded) big.push_back(static_cast<int>(b));
+    const bool gridded = detail::cell_range(box(b), h, &r[0], &r[3]);
+    if (!gridded) big.push_back(b);
     start[b + 1] = start[b] + (gridded ? static_cast<std::size_t>((r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1)) : 0);
   }
   std::vector<std::pair<std::uint64_t, int>> entries(start.back());  // (cell, box position)
-  tbb::parallel_for(std::size_t(0), boxes.size(), [&](std::size_t b) {
+  tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t b) {
     if (start[b + 1] == start[b]) return;
     const auto& r = range[b];
     std::size_t e = start[b];
@@ -79,13 +71,12 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& boxes)
       const std::uint64_t here = entries[runs[r]].first;
       for (std::size_t x = runs[r]; x < runs[r + 1]; ++x)
         for (std::size_t y = x + 1; y < runs[r + 1]; ++y) {
-          const Box& bx = boxes[entries[x].second];
-          const Box& by = boxes[entries[y].second];
-          if (!overlap(bx, by)) continue;
+          const std::size_t bx = entries[x].second, by = entries[y].second;
+          if (!box(bx).intersects(box(by))) continue;
           // The overlap's low corner lies in both boxes' cell ranges: its cell is one of theirs.
           std::int64_t c[3];
           for (int a = 0; a < 3; ++a)
-            c[a] = std::max(range[entries[x].second][a], range[entries[y].second][a]);
+            c[a] = std::max(range[bx][a], range[by][a]);
           const std::uint64_t low = detail::cell_key(c[0], c[1], c[2]);
           if (low == here) mine.push_back(pair_of(bx, by));
         }
@@ -93,9 +84,9 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Box>& boxes)
   });
   tbb::parallel_for(std::size_t(0), big.size(), [&](std::size_t i) {
     auto& mine = found.local();
-    const Box& bx = boxes[big[i]];
-    for (const Box& by : boxes)
-      if (by.info() != bx.info() && overlap(bx, by)) mine.push_back(pair_of(bx, by));
+    const std::size_t bx = big[i];
+    for (std::size_t by = 0; by < ids.size(); ++by)
+      if (by != bx && box(bx).intersects(box(by))) mine.push_back(pair_of(bx, by));
   });
   for (auto& part : found) out.insert(out.end(), part.begin(), part.end());
   tbb::parallel_sort(out.begin(), out.end());
@@ -121,32 +112,28 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
   auto corner = [&](int f, int k) { return points[soup.faces[f][k]]; };
 
   TriangleDefects out;
-  std::vector<Box> boxes, chosen;
   std::vector<char> in_subset(soup.faces.size(), subset ? 0 : 1);
   if (subset)
     for (int f : *subset) in_subset[f] = 1;
-  std::vector<CGAL::Bbox_3> bbox(soup.faces.size());
+  std::vector<Eigen::AlignedBox3d> box(soup.faces.size());
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
-    const int i = static_cast<int>(f);
-    bbox[f] = corner(i, 0).bbox() + corner(i, 1).bbox() + corner(i, 2).bbox();
+    box[f] = Eigen::AlignedBox3d(soup.points[soup.faces[f][0]]);
+    box[f].extend(soup.points[soup.faces[f][1]]).extend(soup.points[soup.faces[f][2]]);
   }
   // A local change (subset): only the boxes near the subset's can pair with them.
-  auto eigen_box = [](const CGAL::Bbox_3& b) {
-    return Eigen::AlignedBox3d(Eigen::Vector3d(b.xmin(), b.ymin(), b.zmin()), Eigen::Vector3d(b.xmax(), b.ymax(), b.zmax()));
-  };
   std::vector<Eigen::AlignedBox3d> probes;
   if (subset)
-    for (int f : *subset) probes.push_back(eigen_box(bbox[f]));
+    for (int f : *subset) probes.push_back(box[f]);
   const detail::BoxGrid grid(probes);
+  std::vector<int> kept;  // the faces that take part: not degenerate (and near, for a subset)
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
     const int i = static_cast<int>(f);
-    if (!in_subset[f] && !grid.near(eigen_box(bbox[f]))) continue;
+    if (!in_subset[f] && !grid.near(box[f])) continue;
     if (CGAL::collinear(corner(i, 0), corner(i, 1), corner(i, 2))) {
       if (in_subset[f]) out.degenerate_faces.push_back(i);
       continue;
     }
-    boxes.emplace_back(bbox[f], i);
-    if (subset && in_subset[f]) chosen.emplace_back(bbox[f], i);
+    kept.push_back(i);
   }
 
   auto intersect = [&](int f, int g) {
@@ -182,13 +169,22 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
   // sorted whatever the thread count.
   std::vector<std::array<int, 2>> candidates;
   if (subset) {
+    auto cgal_box = [&](int f) {
+      const auto& b = box[f];
+      return Box(CGAL::Bbox_3(b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(), b.max().z()), f);
+    };
+    std::vector<Box> boxes, chosen;
+    for (int f : kept) {
+      boxes.push_back(cgal_box(f));
+      if (in_subset[f]) chosen.push_back(cgal_box(f));
+    }
     CGAL::box_intersection_d(chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
       if (x.info() != y.info()) candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
     });
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   } else {
-    candidates = overlapping_pairs(boxes);
+    candidates = overlapping_pairs(box, kept);
   }
   std::vector<char> hit(candidates.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),
