@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
@@ -24,6 +26,23 @@ double seconds_since(Clock::time_point t0) {
 }
 
 enum class Outcome { ray, zero_direction, missed, too_far };
+
+
+using PrimitiveList = std::shared_ptr<const std::vector<PrimitiveId>>;
+
+/// What a vertex migrates with: P (shared by the vertices of one leaf), the leaf side that
+/// scales its travel, and a closed box `cover` holding the vertex's start such that P lists
+/// every primitive meeting it (no box: `cover` empty).
+struct Locale {
+  PrimitiveList prims;
+  double side = 0;
+  Eigen::AlignedBox3d cover;
+};
+
+const std::vector<PrimitiveId>& list_of(const PrimitiveList& list) {
+  static const std::vector<PrimitiveId> none;
+  return list ? *list : none;
+}
 
 /// The vertex-migration worker: everything in the octree's root frame, G built there too.
 class Refiner {
@@ -83,9 +102,11 @@ class Refiner {
   /// cube of any leaf that contains it (for an active leaf, its Spheres(c) and Cones(c); a
   /// point of a cone can lie in an inactive leaf, which then contributes its cones). The leaf
   /// size for the travel limit is the smallest such leaf's.
-  void point_primitives(const Vec3& p, std::vector<PrimitiveId>& out, double& side) const {
-    out.clear();
+  void point_primitives(const Vec3& p, Locale& locale) const {
+    std::vector<PrimitiveId> out;
+    double& side = locale.side;
     side = tree_.root_side;
+    double cover_side = 0;
     std::vector<int> stack = {0};
     while (!stack.empty()) {
       const int c = stack.back();
@@ -100,34 +121,45 @@ class Refiner {
       }
       shape_->primitives_meeting_box(lo, lo + Vec3::Constant(s), out);
       side = std::min(side, s);
+      if (s > cover_side) {  // the largest leaf: every primitive meeting it is listed
+        cover_side = s;
+        locale.cover = Eigen::AlignedBox3d(lo, lo + Vec3::Constant(s));
+      }
     }
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
+    locale.prims = std::make_shared<const std::vector<PrimitiveId>>(std::move(out));
   }
 
   void start_from_dual() {
     // Vertices: the centres of M1's squares; P from the owning leaf.
     const std::size_t n = m1_.faces.size();
     start_.resize(n);
-    leaf_side_.resize(n);
+    locale_.resize(n);
     std::vector<int> owners;
     for (std::size_t f = 0; f < n; ++f) {
       const CoarseFace& face = m1_.faces[f];
       const double side = tree_.side(face.level);
       for (int a = 0; a < 3; ++a)
         start_[f][a] = (static_cast<double>(face.corner[a]) + (a == face.axis ? 0.0 : 0.5)) * side;
-      leaf_side_[f] = tree_.side(tree_.cells[face.owner].level);
       owners.push_back(face.owner);
     }
     std::sort(owners.begin(), owners.end());
     owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
-    std::vector<std::vector<PrimitiveId>> per_owner(owners.size());
-    tbb::parallel_for(std::size_t(0), owners.size(),
-                      [&](std::size_t i) { add_leaf_primitives(owners[i], per_owner[i]); });
-    primitives_.resize(n);
+    std::vector<Locale> per_owner(owners.size());
+    tbb::parallel_for(std::size_t(0), owners.size(), [&](std::size_t i) {
+      const OctreeCell& owner = tree_.cells[owners[i]];
+      Locale& l = per_owner[i];
+      l.side = tree_.side(owner.level);
+      const Vec3 lo = Vec3(owner.ijk[0], owner.ijk[1], owner.ijk[2]) * l.side;
+      l.cover = Eigen::AlignedBox3d(lo, lo + Vec3::Constant(l.side));
+      std::vector<PrimitiveId> prims;
+      add_leaf_primitives(owners[i], prims);
+      l.prims = std::make_shared<const std::vector<PrimitiveId>>(std::move(prims));
+    });
     for (std::size_t f = 0; f < n; ++f) {
       const auto it = std::lower_bound(owners.begin(), owners.end(), m1_.faces[f].owner);
-      primitives_[f] = per_owner[it - owners.begin()];
+      locale_[f] = per_owner[it - owners.begin()];
     }
     // Faces: one per M1 vertex, the M1 faces around it in counter-clockwise order.
     const Mesh& mesh = m1_.mesh;
@@ -146,14 +178,13 @@ class Refiner {
   void start_from_m1() {
     const Mesh& mesh = m1_.mesh;
     start_.resize(mesh.n_vertices());
-    leaf_side_.resize(mesh.n_vertices());
-    primitives_.resize(mesh.n_vertices());
+    locale_.resize(mesh.n_vertices());
     for (const auto v : mesh.vertices()) {
       const auto& p = mesh.point(v);
       start_[v.idx()] = tree_.to_local(Vec3(p[0], p[1], p[2]));
     }
     tbb::parallel_for(std::size_t(0), start_.size(), [&](std::size_t i) {
-      point_primitives(start_[i], primitives_[i], leaf_side_[i]);
+      point_primitives(start_[i], locale_[i]);
     });
     for (const auto f : mesh.faces()) {
       std::vector<int> loop;
@@ -165,11 +196,14 @@ class Refiner {
   // --- migration -----------------------------------------------------------------------------
 
   /// Moves v along m(v) onto G: outside the union, to where the line first enters it;
-  /// inside, back along -m(v) to where it leaves. One line query over a short segment first
-  /// (1.5 leaf sides each way, where nearly every vertex lands), then the full max_travel.
-  Outcome migrate(const Vec3& v, const std::vector<PrimitiveId>& prims, double side, Vec3& out) const {
+  /// inside, back along -m(v) to where it leaves. From outside, first from the octree's lists
+  /// (local_entry); when they cannot settle it, one line query over all primitives along a
+  /// short segment (1.5 leaf sides each way, where nearly every vertex lands), then the full
+  /// max_travel.
+  Outcome migrate(const Vec3& v, const Locale& locale, Vec3& out) const {
+    const double side = locale.side;
     Vec3 m = Vec3::Zero();
-    for (PrimitiveId g : prims) m -= shape_->migration_vector(g, v);
+    for (PrimitiveId g : list_of(locale.prims)) m -= shape_->migration_vector(g, v);
     const double norm = m.norm();
     if (!(norm > 1e-12)) {
       out = shape_->closest_point(v);
@@ -177,6 +211,10 @@ class Refiner {
     }
     const Vec3 dir = m / norm;
     double t;
+    if (local_entry(v, dir, locale, opt_.max_travel * side, t)) {
+      out = v + t * dir;
+      return Outcome::ray;
+    }
     bool inside;
     for (const double reach : {std::min(1.5, opt_.max_travel), opt_.max_travel}) {
       if (shape_->line_to_boundary(v, dir, reach * side, t, inside)) {
@@ -190,6 +228,93 @@ class Refiner {
     const bool anywhere = inside || shape_->first_entry(v, dir, 1e300, t);
     out = shape_->closest_point(v);
     return anywhere ? Outcome::too_far : Outcome::missed;
+  }
+
+  /// The first entry at t in (0, t_limit] of the ray v + t dir into the union, from the
+  /// octree's lists alone: P over the locale's cover box, then the lists of the leaves the ray
+  /// crosses after it, in order. The smallest entry so far is the first into the union once
+  /// it lies within the boxes crossed: a primitive entered sooner meets one of them, and each
+  /// lists every primitive meeting it (an inactive leaf meets none; a leaf inside one ball,
+  /// whose list omits crease cones, is never reached: its ball is entered before it). False,
+  /// for the caller's query over all primitives, when v lies in P, no entry comes by t_limit,
+  /// or the walk crosses more than a few leaves or cannot follow the ray.
+  bool local_entry(const Vec3& v, const Vec3& dir, const Locale& locale, double t_limit, double& t) const {
+    if (!opt_.local_queries || !locale.prims || !locale.cover.contains(v)) return false;
+    double first = std::numeric_limits<double>::infinity();
+    bool inside = false;
+    auto enter = [&](PrimitiveId g) {
+      double a, z;
+      if (!shape_->ray_interval(g, v, dir, a, z) || z < 0) return;
+      if (a <= 0) inside = true;  // only a primitive of P can hold v, which lies in the cover
+      first = std::min(first, a);
+    };
+    for (PrimitiveId g : *locale.prims) enter(g);
+    if (inside) return false;
+    // Parameters where the ray enters and leaves the closed box [lo, lo + s]; NaN-free: a
+    // zero direction component keeps the slab when v lies in it.
+    auto crossing = [&](const Vec3& lo, const Vec3& hi, double& t0, double& t1) {
+      t0 = -std::numeric_limits<double>::infinity();
+      t1 = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        if (dir[k] == 0) {
+          if (v[k] < lo[k] || v[k] > hi[k]) return false;
+          continue;
+        }
+        const double a = (lo[k] - v[k]) / dir[k], b = (hi[k] - v[k]) / dir[k];
+        t0 = std::max(t0, std::min(a, b));
+        t1 = std::min(t1, std::max(a, b));
+      }
+      return true;
+    };
+    double t0, exit;
+    if (!crossing(locale.cover.min(), locale.cover.max(), t0, exit)) return false;
+    constexpr int kMaxLeaves = 8;
+    for (int step = 0;; ++step) {
+      if (first <= exit) {
+        if (first > t_limit) return false;
+        t = first;
+        return true;
+      }
+      if (exit >= t_limit || step == kMaxLeaves) return false;
+      const int leaf = leaf_entered(v + exit * dir, dir);
+      if (leaf < 0) return false;
+      const OctreeCell& cell = tree_.cells[leaf];
+      const double s = tree_.side(cell.level);
+      const Vec3 lo = Vec3(cell.ijk[0], cell.ijk[1], cell.ijk[2]) * s;
+      double next;
+      // The leaf must pick the ray up where the last box let it go, and carry it further.
+      if (!crossing(lo, lo + Vec3::Constant(s), t0, next) || t0 > exit + 1e-9 * s || !(next > exit)) return false;
+      exit = next;
+      for (int a : cell.spheres) {
+        enter(a);
+        const auto [c0, c1] = shape_->cones_of_atom(a);
+        for (const PrimitiveId* c = c0; c != c1; ++c) enter(*c);
+      }
+      const int n = static_cast<int>(shape_->sphere_count());
+      for (int k : cell.cones) enter(n + k);
+      if (inside) return false;
+    }
+  }
+
+  /// The leaf holding the point q that a ray with direction dir enters there: at a cell's
+  /// mid-plane (to rounding), the child the direction points into. -1 outside the root.
+  int leaf_entered(const Vec3& q, const Vec3& dir) const {
+    const double tol = 1e-12 * tree_.root_side;
+    for (int k = 0; k < 3; ++k)
+      if (q[k] < -tol || q[k] > tree_.root_side + tol) return -1;
+    int c = 0;
+    while (!tree_.cells[c].is_leaf()) {
+      const OctreeCell& cell = tree_.cells[c];
+      const double half = tree_.side(cell.level + 1);
+      int child = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double mid = (2.0 * cell.ijk[k] + 1) * half;
+        const bool high = std::abs(q[k] - mid) <= tol ? dir[k] > 0 : q[k] > mid;
+        child |= static_cast<int>(high) << k;
+      }
+      c = cell.first_child + child;
+    }
+    return c;
   }
 
   void count_outcome(Outcome o) {
@@ -207,7 +332,7 @@ class Refiner {
     position_.resize(n);
     std::vector<Outcome> outcome(n - first);
     tbb::parallel_for(first, n, [&](std::size_t i) {
-      outcome[i - first] = migrate(start_[i], primitives_[i], leaf_side_[i], position_[i]);
+      outcome[i - first] = migrate(start_[i], locale_[i], position_[i]);
     });
     for (Outcome o : outcome) count_outcome(o);
     stats_.vertices_migrated += n - first;
@@ -259,8 +384,7 @@ class Refiner {
       const int c = static_cast<int>(position_.size());
       start_.push_back(centroid);
       position_.push_back(shape_->closest_point(centroid));
-      primitives_.emplace_back();
-      leaf_side_.push_back(0);
+      locale_.emplace_back();
       ++stats_.centroid_fans;
       for (int i = 0; i < n; ++i) out.push_back({poly[i], poly[(i + 1) % n], c});
       return;
@@ -303,8 +427,7 @@ class Refiner {
       auto [it, inserted] = midpoint.emplace(key, static_cast<int>(start_.size()));
       if (inserted) {
         start_.push_back((position_[a] + position_[b]) / 2);
-        primitives_.emplace_back();
-        leaf_side_.push_back(0);
+        locale_.emplace_back();
       }
       return it->second;
     };
@@ -318,7 +441,7 @@ class Refiner {
       out.push_back({ab, bc, ca});
     }
     tbb::parallel_for(first_new, start_.size(), [&](std::size_t i) {
-      point_primitives(start_[i], primitives_[i], leaf_side_[i]);
+      point_primitives(start_[i], locale_[i]);
     });
     migrate_range(first_new);
     return out;
@@ -345,12 +468,12 @@ class Refiner {
     tbb::parallel_for(std::size_t(0), edges.size(), [&](std::size_t e) {
       const auto [a, b] = edges[e];
       if (static_cast<std::size_t>(b) < fresh) return;  // tested in an earlier round (b > a)
-      const double tol = opt_.max_gap * std::min(leaf_side_[a], leaf_side_[b]);
+      const double tol = opt_.max_gap * std::min(locale_[a].side, locale_[b].side);
       // Both ends lie on G: a midpoint within tol of one cannot be farther from G.
       if ((position_[a] - position_[b]).squaredNorm() <= 4 * tol * tol) return;
       const Vec3 m = (position_[a] + position_[b]) / 2;
       // The balls of a's leaf first (cheap, and nearly always one of them is within tol).
-      for (PrimitiveId g : primitives_[a]) {
+      for (PrimitiveId g : list_of(locale_[a].prims)) {
         if (!shape_->is_sphere(g)) break;  // sorted: the spheres come first
         const double r = shape_->sphere(g).radius + tol;
         if ((m - shape_->sphere(g).centre).squaredNorm() <= r * r) return;
@@ -365,14 +488,13 @@ class Refiner {
     // Candidates after the current vertices: index first_new + j for split[j].
     const std::size_t first_new = start_.size(), count = split.size();
     std::vector<Vec3> from(count), to(count);
-    std::vector<std::vector<PrimitiveId>> prims(count);
-    std::vector<double> side(count);
+    std::vector<Locale> locale(count);
     std::vector<Outcome> outcome(count);
     tbb::parallel_for(std::size_t(0), count, [&](std::size_t j) {
       const auto [a, b] = edges[split[j]];
       from[j] = (position_[a] + position_[b]) / 2;
-      point_primitives(from[j], prims[j], side[j]);
-      outcome[j] = migrate(from[j], prims[j], side[j], to[j]);
+      point_primitives(from[j], locale[j]);
+      outcome[j] = migrate(from[j], locale[j], to[j]);
     });
     std::vector<int> mid(edges.size(), -1);
     for (std::size_t j = 0; j < count; ++j) mid[split[j]] = static_cast<int>(first_new + j);
@@ -447,8 +569,7 @@ class Refiner {
       // midpoint of its edge's starts, so the starts stay the fold-free dual of M1, subdivided.
       start_.push_back((start_[a] + start_[b]) / 2);
       position_.push_back(to[j]);
-      primitives_.push_back(std::move(prims[j]));
-      leaf_side_.push_back(side[j]);
+      locale_.push_back(std::move(locale[j]));
       count_outcome(outcome[j]);
     }
     if (kept == 0) return false;
@@ -651,8 +772,7 @@ class Refiner {
   RefineStats stats_;
   std::vector<Vec3> start_;       // before migration (root frame)
   std::vector<Vec3> position_;    // after migration
-  std::vector<double> leaf_side_;
-  std::vector<std::vector<PrimitiveId>> primitives_;
+  std::vector<Locale> locale_;    // what each vertex migrates with
   std::vector<std::vector<int>> polygons_;
 };
 

@@ -116,6 +116,36 @@ TEST(RefineMesh, SameOutputAtOneAndTwoThreads) {
   EXPECT_EQ(one.points, two.points);
 }
 
+/// The first entries found from the octree's lists (the vertex's leaf, then the leaves its
+/// ray crosses, crease-only leaves among them) are the hierarchy's over all primitives: the
+/// same M2, to the bit, with and without them, from the dual (on a blob where dropping the
+/// crease-only cones of the crossed leaves changes M2), from M1 itself and subdivided.
+TEST(RefineMesh, LocalLineQueriesMatchTheQueriesOverAllPrimitives) {
+  struct Case {
+    const char* what;
+    mg::MedialSurface atoms;
+    bool dual;
+    int subdivisions;
+  };
+  const std::vector<Case> cases = {{"dual", mg_test::blob(40, 0.1, 0.35, 7), true, 0},
+                                   {"dual, subdivided", mg_test::blob(30, 0.05, 0.3, 3), true, 1},
+                                   {"no dual", mg_test::blob(30, 0.05, 0.3, 3), false, 0}};
+  mg::OctreeOptions topt = coarse();
+  topt.cones.min_circle_ratio = 0;
+  topt.cones.max_collar = 0;
+  for (const Case& c : cases) {
+    mg::RefineOptions local, global;
+    local.dual = global.dual = c.dual;
+    local.subdivisions = global.subdivisions = c.subdivisions;
+    global.local_queries = false;
+    const auto a = mg::soup_from_mesh(garb(c.atoms, local, topt).mesh);
+    const auto b = mg::soup_from_mesh(garb(c.atoms, global, topt).mesh);
+    ASSERT_GT(a.points.size(), 1000u) << c.what;
+    EXPECT_EQ(a.faces, b.faces) << c.what;
+    EXPECT_EQ(a.points, b.points) << c.what;
+  }
+}
+
 /// Largest distance from G of the vertices, edge midpoints and centroids of a mesh.
 double farthest_sample(const mg::Mesh& m, const mg::TargetShape& shape) {
   const auto soup = mg::soup_from_mesh(m);

@@ -23,6 +23,10 @@ struct RefineOptions {
   /// a leaf. 0: off.
   double max_gap = 0.5;
   int gap_rounds = 3;
+  /// Find where a vertex's ray first enters G from the octree's lists (P of its leaf, then of
+  /// the leaves the ray crosses) before asking the hierarchy over all primitives. The same
+  /// result either way; false only for tests and timing.
+  bool local_queries = true;
 };
 
 struct RefineStats {

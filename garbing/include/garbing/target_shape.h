@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace mg {
@@ -160,6 +161,11 @@ class TargetShape {
   /// box), appended in increasing id order.
   void primitives_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                               std::vector<PrimitiveId>& out) const;
+
+  /// The cones with atom `a` as an end: ids [first, second).
+  std::pair<const PrimitiveId*, const PrimitiveId*> cones_of_atom(int a) const {
+    return {cones_by_atom_.data() + cones_by_atom_start_[a], cones_by_atom_.data() + cones_by_atom_start_[a + 1]};
+  }
 
   /// The cones with an end atom among `atoms` (ids, appended sorted, without repeats).
   void cones_of_atoms(const std::vector<int>& atoms, std::vector<PrimitiveId>& out) const;
