@@ -243,6 +243,14 @@ class Refiner {
     double first = std::numeric_limits<double>::infinity();
     bool inside = false;
     auto enter = [&](PrimitiveId g) {
+      if (!shape_->is_sphere(g)) {
+        // A cone entered by `first` (or holding v) meets the segment [v, v + first dir] inside
+        // its bounding ball: a cheap rejection of most (dir is unit; slack for rounding).
+        const Cone& k = shape_->cone(g);
+        const Vec3 w = k.bound_centre - v;
+        const double along = std::clamp(w.dot(dir), 0.0, first);
+        if ((w - along * dir).squaredNorm() > k.bound_radius2 * (1 + 1e-9)) return;
+      }
       double a, z;
       if (!shape_->ray_interval(g, v, dir, a, z) || z < 0) return;
       if (a <= 0) inside = true;  // only a primitive of P can hold v, which lies in the cover
