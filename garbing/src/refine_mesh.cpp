@@ -27,7 +27,6 @@ double seconds_since(Clock::time_point t0) {
 
 enum class Outcome { ray, zero_direction, missed, too_far };
 
-
 using PrimitiveList = std::shared_ptr<const std::vector<PrimitiveId>>;
 
 /// What a vertex migrates with: P (shared by the vertices of one leaf), the leaf side that
