@@ -242,6 +242,7 @@ class Refiner {
     double first = std::numeric_limits<double>::infinity();
     bool inside = false;
     auto enter = [&](PrimitiveId g) {
+      if (inside) return;  // settled: the caller's run query (and `first` may be <= 0)
       if (!shape_->is_sphere(g)) {
         // A cone entered by `first` (or holding v) meets the segment [v, v + first dir] inside
         // its bounding ball: a cheap rejection of most (dir is unit; slack for rounding).
