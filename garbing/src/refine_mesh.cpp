@@ -1,6 +1,7 @@
 #include "garbing/refine_mesh.h"
 
 #include "garbing/detail/box_grid.h"
+#include "garbing/detail/line_box.h"
 #include "garbing/errors.h"
 #include "garbing/triangle_defects.h"
 
@@ -84,15 +85,25 @@ class Refiner {
 
   // --- the starting mesh ---------------------------------------------------------------------
 
-  /// P(c) of a leaf: Spheres(c), the cones of those balls, and Cones(c) (the cones meeting
-  /// the cube through their crease only): every primitive whose solid meets the cube (leaves
-  /// inside one ball, which own no M1 face, list no crease cones).
-  void add_leaf_primitives(int leaf, std::vector<PrimitiveId>& out) const {
+  /// Visits P(c) of a leaf: Spheres(c), the cones of those balls (a cone of two of them
+  /// twice), and Cones(c) (the cones meeting the cube through their crease only): every
+  /// primitive whose solid meets the cube (leaves inside one ball, which own no M1 face, list
+  /// no crease cones).
+  template <class Visit>
+  void for_each_leaf_primitive(int leaf, Visit&& visit) const {
     const OctreeCell& cell = tree_.cells[leaf];
-    out.insert(out.end(), cell.spheres.begin(), cell.spheres.end());
-    shape_->cones_of_atoms(cell.spheres, out);
+    for (int a : cell.spheres) {
+      visit(a);
+      const auto [first, last] = shape_->cones_of_atom(a);
+      for (const PrimitiveId* c = first; c != last; ++c) visit(*c);
+    }
     const int n = static_cast<int>(shape_->sphere_count());
-    for (int k : cell.cones) out.push_back(n + k);
+    for (int k : cell.cones) visit(n + k);
+  }
+
+  /// P(c) of a leaf, appended sorted, without repeats.
+  void add_leaf_primitives(int leaf, std::vector<PrimitiveId>& out) const {
+    for_each_leaf_primitive(leaf, [&](PrimitiveId g) { out.push_back(g); });
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
   }
@@ -258,21 +269,12 @@ class Refiner {
     };
     for (PrimitiveId g : *locale.prims) enter(g);
     if (inside) return false;
-    // Parameters where the ray enters and leaves the closed box [lo, lo + s]; NaN-free: a
-    // zero direction component keeps the slab when v lies in it.
+    // Parameters where the line enters and leaves the closed box [lo, hi].
+    const Vec3 inv = dir.cwiseInverse();
     auto crossing = [&](const Vec3& lo, const Vec3& hi, double& t0, double& t1) {
       t0 = -std::numeric_limits<double>::infinity();
       t1 = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < 3; ++k) {
-        if (dir[k] == 0) {
-          if (v[k] < lo[k] || v[k] > hi[k]) return false;
-          continue;
-        }
-        const double a = (lo[k] - v[k]) / dir[k], b = (hi[k] - v[k]) / dir[k];
-        t0 = std::max(t0, std::min(a, b));
-        t1 = std::min(t1, std::max(a, b));
-      }
-      return true;
+      return detail::clip_line_to_box(lo, hi, v, inv, t0, t1);
     };
     double t0, exit;
     if (!crossing(locale.cover.min(), locale.cover.max(), t0, exit)) return false;
@@ -293,36 +295,22 @@ class Refiner {
       // The leaf must pick the ray up where the last box let it go, and carry it further.
       if (!crossing(lo, lo + Vec3::Constant(s), t0, next) || t0 > exit + 1e-9 * s || !(next > exit)) return false;
       exit = next;
-      for (int a : cell.spheres) {
-        enter(a);
-        const auto [c0, c1] = shape_->cones_of_atom(a);
-        for (const PrimitiveId* c = c0; c != c1; ++c) enter(*c);
-      }
-      const int n = static_cast<int>(shape_->sphere_count());
-      for (int k : cell.cones) enter(n + k);
+      for_each_leaf_primitive(leaf, enter);
       if (inside) return false;
     }
   }
 
-  /// The leaf holding the point q that a ray with direction dir enters there: at a cell's
-  /// mid-plane (to rounding), the child the direction points into. -1 outside the root.
+  /// The leaf holding the point q that a line with direction dir enters there: on a cell
+  /// boundary (to rounding), the cell the direction points into. -1 outside the root.
   int leaf_entered(const Vec3& q, const Vec3& dir) const {
-    const double tol = 1e-12 * tree_.root_side;
-    for (int k = 0; k < 3; ++k)
-      if (q[k] < -tol || q[k] > tree_.root_side + tol) return -1;
-    int c = 0;
-    while (!tree_.cells[c].is_leaf()) {
-      const OctreeCell& cell = tree_.cells[c];
-      const double half = tree_.side(cell.level + 1);
-      int child = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double mid = (2.0 * cell.ijk[k] + 1) * half;
-        const bool high = std::abs(q[k] - mid) <= tol ? dir[k] > 0 : q[k] > mid;
-        child |= static_cast<int>(high) << k;
-      }
-      c = cell.first_child + child;
+    const double unit = tree_.side(tree_.depth), tol = 1e-12 * tree_.root_side;
+    std::array<std::int64_t, 3> ijk;
+    for (int k = 0; k < 3; ++k) {
+      const double plane = std::round(q[k] / unit);
+      ijk[k] = std::abs(q[k] - plane * unit) <= tol ? static_cast<std::int64_t>(plane) - (dir[k] > 0 ? 0 : 1)
+                                                    : static_cast<std::int64_t>(std::floor(q[k] / unit));
     }
-    return c;
+    return find_cell(tree_, tree_.depth, ijk);
   }
 
   void count_outcome(Outcome o) {

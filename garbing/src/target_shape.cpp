@@ -1,6 +1,7 @@
 #include "garbing/target_shape.h"
 
 #include "garbing/detail/convex_search.h"
+#include "garbing/detail/line_box.h"
 #include "garbing/errors.h"
 
 #include <algorithm>
@@ -92,18 +93,7 @@ struct Box {
   }
   /// Parameter range of the ray o + t d inside the box, clipped to [t0, t1].
   bool clip(const Vec3& o, const Vec3& inv_d, double& t0, double& t1) const {
-    for (int k = 0; k < 3; ++k) {
-      double a = (lo[k] - o[k]) * inv_d[k], b = (hi[k] - o[k]) * inv_d[k];
-      if (std::isnan(a) || std::isnan(b)) {  // d[k] == 0 and o on a slab plane
-        if (o[k] < lo[k] || o[k] > hi[k]) return false;
-        continue;
-      }
-      if (a > b) std::swap(a, b);
-      t0 = std::max(t0, a);
-      t1 = std::min(t1, b);
-      if (t0 > t1) return false;
-    }
-    return true;
+    return detail::clip_line_to_box(lo, hi, o, inv_d, t0, t1);
   }
 };
 
@@ -872,15 +862,6 @@ void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi, std::ve
                   out.push_back(i);
               });
   std::sort(out.begin() + static_cast<long>(start), out.end());
-}
-
-void TargetShape::cones_of_atoms(const std::vector<int>& atoms, std::vector<PrimitiveId>& out) const {
-  const std::size_t start = out.size();
-  for (int a : atoms)
-    out.insert(out.end(), cones_by_atom_.begin() + cones_by_atom_start_[a],
-               cones_by_atom_.begin() + cones_by_atom_start_[a + 1]);
-  std::sort(out.begin() + static_cast<long>(start), out.end());
-  out.erase(std::unique(out.begin() + static_cast<long>(start), out.end()), out.end());
 }
 
 }  // namespace mg

@@ -167,9 +167,6 @@ class TargetShape {
     return {cones_by_atom_.data() + cones_by_atom_start_[a], cones_by_atom_.data() + cones_by_atom_start_[a + 1]};
   }
 
-  /// The cones with an end atom among `atoms` (ids, appended sorted, without repeats).
-  void cones_of_atoms(const std::vector<int>& atoms, std::vector<PrimitiveId>& out) const;
-
  private:
   struct Bvh;
   std::vector<MedialAtom> spheres_;
