@@ -152,13 +152,6 @@ Hull make_hull(const MedialAtom& first, const MedialAtom& second) {
   return h;
 }
 
-/// p in the profile half-plane: along the axis from c1, and from the axis (a cross product:
-/// accurate near it).
-std::pair<double, double> profile(const Hull& h, const Vec3& p) {
-  const Vec3 q = p - h.k.c1;
-  return {q.dot(h.k.u), q.cross(h.k.u).norm()};
-}
-
 /// The hull's distance function (target_shape.h): <= 0 exactly when p is inside.
 double hull_distance(const Hull& h, const Vec3& p) { return mg::hull_distance(h.k, p); }
 
@@ -178,12 +171,18 @@ double segment_distance2(double x, double y, double ax, double ay, double bx, do
 /// that triangle in the centre's own meridian half-plane; compared with the half diagonal.
 /// Monotone: a cube is near whenever one of its children is.
 bool near_crease(const Hull& h, const Vec3& lo, double side) {
-  const auto [x, y] = profile(h, lo + Vec3::Constant(side / 2));
-  const double bound2 = 0.75 * side * side;  // (half diagonal)^2
   const double half_diagonal = side * (std::sqrt(3.0) / 2);
-  if (x < h.fill_lo[0] - half_diagonal || x > h.fill_hi[0] + half_diagonal ||
-      y < h.fill_lo[1] - half_diagonal || y > h.fill_hi[1] + half_diagonal)
-    return false;  // off the triangle's box
+  const Vec3 q = lo + Vec3::Constant(side / 2) - h.k.c1;
+  const double x = q.dot(h.k.u);
+  if (x < h.fill_lo[0] - half_diagonal || x > h.fill_hi[0] + half_diagonal) return false;
+  // The distance from the axis, squared first: a looser test (by a relative 1e-12, more than
+  // the rounding of the squares) spares most square roots and rejects nothing kept below.
+  const double y2 = q.cross(h.k.u).squaredNorm();
+  const double y_hi = h.fill_hi[1] + half_diagonal, y_lo = h.fill_lo[1] - half_diagonal;
+  if (y2 > y_hi * y_hi * (1 + 1e-12) || (y_lo > 0 && y2 < y_lo * y_lo * (1 - 1e-12))) return false;
+  const double y = std::sqrt(y2);
+  if (y < y_lo || y > y_hi) return false;  // off the triangle's box
+  const double bound2 = 0.75 * side * side;  // (half diagonal)^2
   // Inside the triangle: the same side of its three edges.
   const Cone& k = h.k;
   auto cross = [&](double ax, double ay, double bx, double by) { return (bx - ax) * (y - ay) - (by - ay) * (x - ax); };
@@ -528,6 +527,7 @@ class OctreeBuilder {
     }
     // masks[x]: the children met by the ball parent.spheres[x], bit k for child k.
     std::vector<std::uint8_t> masks(parent.spheres.size(), 0);
+    std::array<std::size_t, 8> count = {};
     for (std::size_t x = 0; x < parent.spheres.size(); ++x) {
       const int i = parent.spheres[x];
       const Vec3& p = local_[i];
@@ -549,8 +549,8 @@ class OctreeBuilder {
         d2 += near[2][b2];
         if (d2 > r2) continue;
         masks[x] |= static_cast<std::uint8_t>(1u << k);
+        ++count[k];
         OctreeCell& child = out[k];
-        child.spheres.push_back(i);
         if (!child.inside_one_ball) {
           double e2 = 0;
           e2 += far[0][b0];
@@ -560,6 +560,10 @@ class OctreeBuilder {
         }
       }
     }
+    // The lists, sized once, in the parent's (sorted) order.
+    for (int k = 0; k < 8; ++k) out[k].spheres.reserve(count[k]);
+    for (std::size_t x = 0; x < parent.spheres.size(); ++x)
+      for (unsigned m = masks[x]; m != 0; m &= m - 1) out[__builtin_ctz(m)].spheres.push_back(parent.spheres[x]);
     // Cones(child), the cones whose solid meets the cube while neither of their balls does:
     // candidates are the parent's and those of the parent's balls (a cone meets a sub-cube
     // only if it meets the cube). A cube inside one ball holds no boundary and is never tested
