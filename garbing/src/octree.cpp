@@ -391,27 +391,35 @@ class OctreeBuilder {
     return unreached.empty();
   }
 
-  /// Criterion 3's test: some primitive of `a` meets some primitive of `b` (a shared one
-  /// counts). Both lists are sorted; spheres are tried against spheres first.
-  bool sets_intersect(const std::vector<int>& a, const std::vector<int>& b) const {
+  /// Criterion 3's test: some primitive of cell `a` meets some primitive of cell `b` (a
+  /// shared one counts), read from the cells' sorted sphere and cone lists without merging
+  /// them. Spheres are tried against spheres first.
+  bool sets_intersect(const OctreeCell& a, const OctreeCell& b) const {
+    if (share_one(a.spheres, b.spheres) || share_one(a.cones, b.cones)) return true;
+    for (int s : a.spheres)
+      for (int t : b.spheres)
+        if (balls_intersect(s, t)) return true;
+    const int n = sphere_count();
+    for (int k : a.cones) {  // cones of a against everything of b
+      for (int t : b.spheres)
+        if (primitives_meet(n + k, t)) return true;
+      for (int l : b.cones)
+        if (primitives_meet(n + k, n + l)) return true;
+    }
+    for (int l : b.cones)  // cones of b against the spheres of a
+      for (int s : a.spheres)
+        if (primitives_meet(s, n + l)) return true;
+    return false;
+  }
+
+  /// Whether two sorted lists share an element.
+  static bool share_one(const std::vector<int>& a, const std::vector<int>& b) {
     auto i = a.begin();
     auto j = b.begin();
     while (i != a.end() && j != b.end()) {
       if (*i == *j) return true;
       if (*i < *j) ++i; else ++j;
     }
-    const int n = sphere_count();
-    const auto a_end = std::lower_bound(a.begin(), a.end(), n);
-    const auto b_end = std::lower_bound(b.begin(), b.end(), n);
-    for (auto s = a.begin(); s != a_end; ++s)
-      for (auto t = b.begin(); t != b_end; ++t)
-        if (balls_intersect(*s, *t)) return true;
-    for (auto s = a_end; s != a.end(); ++s)  // cones of a against everything of b
-      for (int t : b)
-        if (primitives_meet(*s, t)) return true;
-    for (auto t = b_end; t != b.end(); ++t)  // cones of b against the spheres of a
-      for (auto s = a.begin(); s != a_end; ++s)
-        if (primitives_meet(*s, *t)) return true;
     return false;
   }
 
@@ -429,9 +437,11 @@ class OctreeBuilder {
     return dim;
   }
 
-  /// Criterion marks of one candidate leaf (reads the tree only).
-  void evaluate_cell(int c, std::vector<std::pair<int, int>>& marks, std::vector<int>& touching,
-                     std::vector<int>& mine, std::vector<int>& theirs) const {
+  /// Criterion marks of one candidate leaf (reads the tree only). The candidates are the
+  /// cells from `first_candidate` on; the tests of a pair of touching leaves are symmetric,
+  /// so a pair of two candidates is tested from the higher index only.
+  void evaluate_cell(int c, int first_candidate, std::vector<std::pair<int, int>>& marks,
+                     std::vector<int>& touching, std::vector<int>& mine) const {
     const OctreeCell& cell = tree_.cells[c];
     if (!cell.is_active()) return;
     const bool exempt = opt_.skip_interior_cells && cell.inside_one_ball;
@@ -439,17 +449,16 @@ class OctreeBuilder {
     if (criterion(2) && cell.level < d && !exempt) marks.emplace_back(c, 2);
     const bool test_1 = criterion(1) && cell.level >= d && !cell.inside_one_ball;
     const bool test_3 = criterion(3) && cell.level >= d && !cell.inside_one_ball;
-    const std::vector<int>& own = (test_1 || test_3) ? primitives(cell, mine) : cell.spheres;
-    if (test_1 && !primitives_connected(own)) marks.emplace_back(c, 1);
+    if (test_1 && !primitives_connected(primitives(cell, mine))) marks.emplace_back(c, 1);
     if (!criterion(3) && !criterion(4)) return;
     touching_leaves(tree_, c, touching);
     for (int t : touching) {
       const OctreeCell& other = tree_.cells[t];
-      if (!other.is_active()) continue;
+      if (!other.is_active() || (t >= first_candidate && t > c)) continue;
       if (criterion(4) && std::abs(cell.level - other.level) > 1 && contact_dimension(cell, other) >= 1)
         marks.emplace_back(cell.level < other.level ? c : t, 4);
       if (test_3 && other.level >= d && !other.inside_one_ball) {
-        if (!sets_intersect(own, primitives(other, theirs))) {
+        if (!sets_intersect(cell, other)) {
           if (cell.level <= other.level) marks.emplace_back(c, 3);
           if (other.level <= cell.level) marks.emplace_back(t, 3);
         }
@@ -457,13 +466,14 @@ class OctreeBuilder {
     }
   }
 
+  /// @pre candidates are consecutive indices (the cells the last split created)
   std::vector<std::pair<int, int>> evaluate(const std::vector<int>& candidates) const {
     std::vector<std::vector<std::pair<int, int>>> per(candidates.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        std::vector<int> touching, mine, theirs;
+                        std::vector<int> touching, mine;
                         for (std::size_t i = r.begin(); i != r.end(); ++i)
-                          evaluate_cell(candidates[i], per[i], touching, mine, theirs);
+                          evaluate_cell(candidates[i], candidates.front(), per[i], touching, mine);
                       });
     std::vector<std::pair<int, int>> marks;
     for (auto& m : per) marks.insert(marks.end(), m.begin(), m.end());
