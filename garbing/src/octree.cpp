@@ -14,6 +14,12 @@ namespace mg {
 
 double Octree::side(int level) const { return std::ldexp(root_side, -level); }
 
+Eigen::AlignedBox3d Octree::cube(const OctreeCell& cell) const {
+  const double s = side(cell.level);
+  const Eigen::Vector3d lo(cell.ijk[0] * s, cell.ijk[1] * s, cell.ijk[2] * s);
+  return {lo, lo + Eigen::Vector3d::Constant(s)};
+}
+
 Eigen::Vector3d Octree::to_local(const Eigen::Vector3d& world) const {
   return axes.transpose() * (world - origin);
 }
@@ -62,13 +68,7 @@ void active_leaves_containing(const Octree& tree, const Eigen::Vector3d& local, 
   while (top > 0) {
     const int c = stack[--top];
     const OctreeCell& cell = tree.cells[c];
-    const double side = tree.side(cell.level);
-    bool inside = true;
-    for (int a = 0; a < 3; ++a) {
-      const double lo = cell.ijk[a] * side;
-      if (local[a] < lo || local[a] > lo + side) inside = false;
-    }
-    if (!inside) continue;
+    if (!tree.cube(cell).contains(local)) continue;
     if (cell.is_leaf()) {
       if (cell.is_active()) out.push_back(c);
     } else {
@@ -313,10 +313,7 @@ class OctreeBuilder {
 
   bool criterion(int k) const { return opt_.criteria[k - 1]; }
 
-  Vec3 cell_lo(const OctreeCell& c) const {
-    const double s = tree_.side(c.level);
-    return Vec3(c.ijk[0] * s, c.ijk[1] * s, c.ijk[2] * s);
-  }
+  Vec3 cell_lo(const OctreeCell& c) const { return tree_.cube(c).min(); }
 
   bool ball_contains_cell(int i, const Vec3& lo, double side) const {
     const Vec3& p = local_[i];

@@ -122,18 +122,18 @@ class Refiner {
       const int c = stack.back();
       stack.pop_back();
       const OctreeCell& cell = tree_.cells[c];
-      const double s = tree_.side(cell.level);
-      const Vec3 lo(cell.ijk[0] * s, cell.ijk[1] * s, cell.ijk[2] * s);
-      if ((p.array() < lo.array()).any() || (p.array() > lo.array() + s).any()) continue;
+      const Eigen::AlignedBox3d cube = tree_.cube(cell);
+      if (!cube.contains(p)) continue;
       if (!cell.is_leaf()) {
         for (int k = 0; k < 8; ++k) stack.push_back(cell.first_child + k);
         continue;
       }
-      shape_->primitives_meeting_box(lo, lo + Vec3::Constant(s), out);
+      shape_->primitives_meeting_box(cube.min(), cube.max(), out);
+      const double s = tree_.side(cell.level);
       side = std::min(side, s);
       if (s > cover_side) {  // the largest leaf: every primitive meeting it is listed
         cover_side = s;
-        locale.cover = Eigen::AlignedBox3d(lo, lo + Vec3::Constant(s));
+        locale.cover = cube;
       }
     }
     std::sort(out.begin(), out.end());
@@ -161,8 +161,7 @@ class Refiner {
       const OctreeCell& owner = tree_.cells[owners[i]];
       Locale& l = per_owner[i];
       l.side = tree_.side(owner.level);
-      const Vec3 lo = Vec3(owner.ijk[0], owner.ijk[1], owner.ijk[2]) * l.side;
-      l.cover = Eigen::AlignedBox3d(lo, lo + Vec3::Constant(l.side));
+      l.cover = tree_.cube(owner);
       std::vector<PrimitiveId> prims;
       add_leaf_primitives(owners[i], prims);
       l.prims = std::make_shared<const std::vector<PrimitiveId>>(std::move(prims));
@@ -289,11 +288,11 @@ class Refiner {
       const int leaf = leaf_entered(v + exit * dir, dir);
       if (leaf < 0) return false;
       const OctreeCell& cell = tree_.cells[leaf];
+      const Eigen::AlignedBox3d cube = tree_.cube(cell);
       const double s = tree_.side(cell.level);
-      const Vec3 lo = Vec3(cell.ijk[0], cell.ijk[1], cell.ijk[2]) * s;
       double next;
       // The leaf must pick the ray up where the last box let it go, and carry it further.
-      if (!crossing(lo, lo + Vec3::Constant(s), t0, next) || t0 > exit + 1e-9 * s || !(next > exit)) return false;
+      if (!crossing(cube.min(), cube.max(), t0, next) || t0 > exit + 1e-9 * s || !(next > exit)) return false;
       exit = next;
       for_each_leaf_primitive(leaf, enter);
       if (inside) return false;

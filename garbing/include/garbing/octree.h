@@ -6,6 +6,8 @@
 #include "garbing/medial_surface.h"
 #include "garbing/target_shape.h"
 
+#include <Eigen/Geometry>
+
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -72,6 +74,8 @@ struct Octree {
   std::vector<int> leaves;           ///< leaf indices, sorted by (Morton order, level)
 
   double side(int level) const;                             ///< cube side at `level`
+  /// The closed cube of a cell in the root frame: [ijk, ijk + 1] * side(level).
+  Eigen::AlignedBox3d cube(const OctreeCell& cell) const;
   Eigen::Vector3d to_local(const Eigen::Vector3d& world) const;   ///< into [0, root_side]^3
   Eigen::Vector3d to_world(const Eigen::Vector3d& local) const;
 };
