@@ -18,7 +18,8 @@ namespace {
 
 using K = CGAL::Epick;
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>;
-using Cb = CGAL::Regular_triangulation_cell_base_3<K>;
+// Hidden points are not kept: only the edges are read, and keeping them costs a list per cell.
+using Cb = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 using Regular = CGAL::Regular_triangulation_3<K, Tds>;
 
@@ -30,12 +31,38 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
   for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
     points.emplace_back(detail::to_weighted_point<K>(atoms.atoms[i]), static_cast<int>(i));
   Regular rt(points.begin(), points.end());
+  // The six edges of every finite cell, bucketed by their lower atom and each kept once.
+  // (CGAL's edge iterator turns around every edge to visit it once, and
+  // number_of_finite_edges() runs it too: most of this function's time when it was used.) A
+  // triangulation of fewer than four points has no cell: its edges come from the iterator.
   std::vector<std::array<int, 2>> edges;
-  edges.reserve(rt.number_of_finite_edges());
-  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
-    int a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
-    if (a > b) std::swap(a, b);
-    edges.push_back({a, b});
+  if (rt.dimension() < 3) {
+    for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
+      int a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
+      if (a > b) std::swap(a, b);
+      edges.push_back({a, b});
+    }
+    std::sort(edges.begin(), edges.end());
+    return edges;
+  }
+  const std::size_t n = atoms.atoms.size();
+  std::vector<int> start(n + 2, 0), upper;
+  auto each_edge = [&](auto&& f) {
+    for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c) {
+      const int v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) f(std::min(v[i], v[j]), std::max(v[i], v[j]));
+    }
+  };
+  each_edge([&](int a, int) { ++start[a + 2]; });
+  for (std::size_t a = 2; a < start.size(); ++a) start[a] += start[a - 1];
+  upper.resize(static_cast<std::size_t>(start.back()));
+  each_edge([&](int a, int b) { upper[start[a + 1]++] = b; });  // start[a + 1]: a's fill point
+  for (std::size_t a = 0; a < n; ++a) {
+    const auto first = upper.begin() + start[a], last = upper.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto b = first; b != last; ++b)
+      if (b == first || *b != *(b - 1)) edges.push_back({static_cast<int>(a), *b});
   }
   return edges;
 }

@@ -212,6 +212,31 @@ TEST(ConePairs, SourcesAndFilter) {
   EXPECT_THROW(mg::parse_cone_source("some"), mg::InvalidInput);
 }
 
+TEST(ConePairs, RegularTriangulationEdgesOfATallBipyramid) {
+  // Equal balls on a unit triangle (z = 0) and two apexes at z = +-2: every pair of balls
+  // intersects, but the regular triangulation is two tetrahedra on the triangle, so the two
+  // apexes share no edge. The other 9 pairs are edges, each listed once.
+  const double c = std::sqrt(3.0) / 2;
+  const mg::MedialSurface s = atoms({{Vector3d(1, 0, 0), 2.5},
+                                     {Vector3d(-0.5, c, 0), 2.5},
+                                     {Vector3d(-0.5, -c, 0), 2.5},
+                                     {Vector3d(0, 0, 2), 2.5},
+                                     {Vector3d(0, 0, -2), 2.5}});
+  mg::ConeOptions opt;
+  opt.min_circle_ratio = 0;
+  opt.max_collar = 0;
+  opt.source = mg::ConeSource::all_pairs;
+  EXPECT_EQ(mg::cone_pairs(s, opt).size(), 10u);
+  opt.source = mg::ConeSource::regular_triangulation;
+  EXPECT_EQ(mg::cone_pairs(s, opt), (std::vector<std::array<int, 2>>{
+                                        {0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
+  // Flattened (apexes at z = +-0.3), the apexes' edge crosses the triangle: all 10 pairs.
+  mg::MedialSurface flat = s;
+  flat.atoms[3].centre.z() = 0.3;
+  flat.atoms[4].centre.z() = -0.3;
+  EXPECT_EQ(mg::cone_pairs(flat, opt).size(), 10u);
+}
+
 TEST(ConePairs, CollarLimitMatchesTheConeGeometry) {
   // Two balls r1 = 1, r2 = 0.6 at L = 0.9 (circle radius 0.59: ratio 0.98, kept by the 0.9
   // filter). The collar, measured on the cone itself: the distance from a point of the circle
