@@ -2,6 +2,7 @@
 
 #include "garbing/detail/box_grid.h"
 #include "garbing/detail/line_box.h"
+#include "garbing/detail/polygon_triangulation.h"
 #include "garbing/errors.h"
 #include "garbing/triangle_defects.h"
 
@@ -13,7 +14,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <set>
 #include <stdexcept>
 
 namespace mg {
@@ -337,76 +337,32 @@ class Refiner {
 
   // --- triangulation and subdivision ---------------------------------------------------------
 
-  /// Triangulation of a polygon (vertex ids) minimising the total length of its diagonals
-  /// (dynamic programming), which keeps the triangles of non-planar dual faces well shaped. A
-  /// diagonal that is already an edge of the mesh, or a diagonal of an earlier polygon (two
-  /// dual faces can share more than one vertex pair), is forbidden: it would be shared by more
-  /// than two faces. When no triangulation
-  /// avoids them, the polygon is fanned from a new vertex at its centroid, moved onto G.
-  void triangulate_polygon(const std::vector<int>& poly, std::set<std::pair<int, int>>& edges,
+  /// Triangulates a dual face by least total diagonal length (detail::min_diagonal_triangulation:
+  /// keeps the triangles of non-planar faces well shaped). A diagonal that is already an edge
+  /// of the mesh, or a diagonal of an earlier polygon (two dual faces can share more than one
+  /// vertex pair), is forbidden: it would be shared by more than two faces. When no
+  /// triangulation avoids them, the polygon is fanned from a new vertex at its centroid, moved
+  /// onto G.
+  void triangulate_polygon(const std::vector<int>& poly, detail::EdgeSet& edges,
                            std::vector<std::array<int, 3>>& out) {
+    if (detail::min_diagonal_triangulation(poly, position_, edges, out)) return;
     const int n = static_cast<int>(poly.size());
-    if (n == 3) {
-      out.push_back({poly[0], poly[1], poly[2]});
-      return;
-    }
-    auto len = [&](int i, int j) -> double {
-      const std::pair<int, int> e(std::min(poly[i], poly[j]), std::max(poly[i], poly[j]));
-      if (edges.count(e)) return INFINITY;
-      return (position_[poly[i]] - position_[poly[j]]).norm();
-    };
-    std::vector<double> cost(n * n, 0.0);
-    std::vector<int> split(n * n, -1);
-    for (int gap = 2; gap < n; ++gap)
-      for (int i = 0; i + gap < n; ++i) {
-        const int j = i + gap;
-        double best = INFINITY;
-        for (int k = i + 1; k < j; ++k) {
-          double c = cost[i * n + k] + cost[k * n + j];
-          if (k > i + 1) c += len(i, k);
-          if (j > k + 1) c += len(k, j);
-          if (c < best) {
-            best = c;
-            split[i * n + j] = k;
-          }
-        }
-        cost[i * n + j] = best;
-      }
-    if (!std::isfinite(cost[n - 1])) {
-      Vec3 centroid = Vec3::Zero();
-      for (int v : poly) centroid += position_[v];
-      centroid /= n;
-      const int c = static_cast<int>(position_.size());
-      start_.push_back(centroid);
-      position_.push_back(shape_->closest_point(centroid));
-      locale_.emplace_back();
-      ++stats_.centroid_fans;
-      for (int i = 0; i < n; ++i) out.push_back({poly[i], poly[(i + 1) % n], c});
-      return;
-    }
-    // Unroll the split table.
-    std::vector<std::pair<int, int>> stack = {{0, n - 1}};
-    while (!stack.empty()) {
-      const auto [i, j] = stack.back();
-      stack.pop_back();
-      if (j - i < 2) continue;
-      const int k = split[i * n + j];
-      out.push_back({poly[i], poly[k], poly[j]});
-      for (const auto& [a, b] : {std::make_pair(i, k), std::make_pair(k, j)})
-        if (b > a + 1) edges.emplace(std::min(poly[a], poly[b]), std::max(poly[a], poly[b]));
-      stack.push_back({i, k});
-      stack.push_back({k, j});
-    }
+    Vec3 centroid = Vec3::Zero();
+    for (int v : poly) centroid += position_[v];
+    centroid /= n;
+    const int c = static_cast<int>(position_.size());
+    start_.push_back(centroid);
+    position_.push_back(shape_->closest_point(centroid));
+    locale_.emplace_back();
+    ++stats_.centroid_fans;
+    for (int i = 0; i < n; ++i) out.push_back({poly[i], poly[(i + 1) % n], c});
   }
 
   std::vector<std::array<int, 3>> triangulate() {
     // Every edge of the mesh so far: the polygons' edges, then each chosen diagonal.
-    std::set<std::pair<int, int>> edges;
+    detail::EdgeSet edges(position_.size());
     for (const auto& poly : polygons_)
-      for (std::size_t i = 0; i < poly.size(); ++i) {
-        const int a = poly[i], b = poly[(i + 1) % poly.size()];
-        edges.emplace(std::min(a, b), std::max(a, b));
-      }
+      for (std::size_t i = 0; i < poly.size(); ++i) edges.insert(poly[i], poly[(i + 1) % poly.size()]);
     std::vector<std::array<int, 3>> triangles;
     for (const auto& poly : polygons_) triangulate_polygon(poly, edges, triangles);
     return triangles;

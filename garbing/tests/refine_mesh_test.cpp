@@ -1,3 +1,4 @@
+#include "garbing/detail/polygon_triangulation.h"
 #include "garbing/errors.h"
 #include "garbing/mesh_topology.h"
 #include "garbing/refine_mesh.h"
@@ -193,6 +194,54 @@ TEST(RefineMesh, GapSplittingFollowsASharpCrease) {
   }
   EXPECT_EQ(one.faces, two.faces);
   EXPECT_EQ(one.points, two.points);
+}
+
+TEST(DualFaceTriangulation, ShortestDiagonalsAndNoRepeatedEdge) {
+  // A hexagon stretched along x: the least total diagonal length is a zigzag of the three
+  // short chords across it, never a long chord along it.
+  const std::vector<Vector3d> hexagon = {{0, 0, 0}, {1, -1, 0}, {3, -1, 0}, {4, 0, 0}, {3, 1, 0}, {1, 1, 0}};
+  mg::detail::EdgeSet edges(hexagon.size());
+  const std::vector<int> poly = {0, 1, 2, 3, 4, 5};
+  for (int i = 0; i < 6; ++i) edges.insert(poly[i], poly[(i + 1) % 6]);
+  std::vector<std::array<int, 3>> out;
+  ASSERT_TRUE(mg::detail::min_diagonal_triangulation(poly, hexagon, edges, out));
+  ASSERT_EQ(out.size(), 4u);
+  double total = 0;
+  int diagonals = 0;
+  for (int a = 0; a < 6; ++a)
+    for (int b = a + 2; b < 6; ++b)
+      if (!(a == 0 && b == 5) && edges.contains(a, b)) {
+        total += (hexagon[a] - hexagon[b]).norm();
+        ++diagonals;
+      }
+  EXPECT_EQ(diagonals, 3);
+  EXPECT_NEAR(total, 4 + 2 * std::sqrt(2.0), 1e-12);  // 1-5 and 2-4 (2 each), 1-4 or 2-5
+  EXPECT_FALSE(edges.contains(0, 3));
+
+  // Two quads sharing the vertex pair (0, 2): the first takes the short diagonal 0-2, so the
+  // second must take its own long diagonal 1-3 instead of repeating 0-2.
+  const std::vector<Vector3d> p = {{0, 0, 0}, {1, -3, 0}, {2, 0, 0}, {1, 3, 0}};
+  mg::detail::EdgeSet shared(p.size());
+  const std::vector<int> first = {0, 1, 2, 3}, second = {0, 3, 2, 1};
+  for (const auto* q : {&first, &second})
+    for (int i = 0; i < 4; ++i) shared.insert((*q)[i], (*q)[(i + 1) % 4]);
+  std::vector<std::array<int, 3>> tris;
+  ASSERT_TRUE(mg::detail::min_diagonal_triangulation(first, p, shared, tris));
+  EXPECT_TRUE(shared.contains(0, 2));
+  EXPECT_FALSE(shared.contains(1, 3));
+  ASSERT_TRUE(mg::detail::min_diagonal_triangulation(second, p, shared, tris));
+  EXPECT_TRUE(shared.contains(1, 3));
+  ASSERT_EQ(tris.size(), 4u);
+  for (std::size_t t = 2; t < 4; ++t) {  // the second quad's triangles both hold 1 and 3
+    EXPECT_NE(std::find(tris[t].begin(), tris[t].end(), 1), tris[t].end());
+    EXPECT_NE(std::find(tris[t].begin(), tris[t].end(), 3), tris[t].end());
+  }
+
+  // A third quad on the same four vertices has no diagonal left: refused, nothing changed.
+  const std::vector<int> third = {0, 1, 2, 3};
+  const std::size_t before = tris.size();
+  EXPECT_FALSE(mg::detail::min_diagonal_triangulation(third, p, shared, tris));
+  EXPECT_EQ(tris.size(), before);
 }
 
 TEST(RefineMesh, RefusesBadOptions) {
