@@ -248,7 +248,11 @@ class Refiner {
   /// for the caller's query over all primitives, when v lies in P, no entry comes by t_limit,
   /// or the walk crosses more than a few leaves or cannot follow the ray.
   bool local_entry(const Vec3& v, const Vec3& dir, const Locale& locale, double t_limit, double& t) const {
-    if (!opt_.local_queries || !locale.prims || !locale.cover.contains(v)) return false;
+    // A dual vertex lies on its owner's cube, which the octree computes as lo + side: the
+    // vertex's own coordinate, (corner + 1) * side, can fall an ulp outside. Such a vertex
+    // counts as in the cover, to the same rounding as the octree's own cube tests.
+    if (!opt_.local_queries || !locale.prims || !(locale.cover.exteriorDistance(v) <= 1e-12 * locale.side))
+      return false;
     double first = std::numeric_limits<double>::infinity();
     bool inside = false;
     auto enter = [&](PrimitiveId g) {
