@@ -198,9 +198,15 @@ def cone_filter_job(build, work, name):
     return rows
 
 
+# POV-Ray 3.7 at more than one thread now and then shades a few pixels differently from run to
+# run (measured: the cube's --refine 2 figure, 3 renders in 14 at 2 threads, 3 pixels off by
+# 1/255; none in 20 at one thread). The renders run as parallel jobs anyway.
+RENDER_THREADS = ("--threads", 1)
+
+
 def render_job(build, work, name, inputs, view, png, size):
     R = H.Runner(build, work)
-    R.run("render", *inputs, "-o", png, "--view", view, "--width", size[0], "--height", size[1])
+    R.run("render", *inputs, "-o", png, "--view", view, "--width", size[0], "--height", size[1], *RENDER_THREADS)
     return png
 
 
@@ -651,7 +657,7 @@ def figures(build, work, rows, fig11, fig14):
         if os.path.exists(view):
             os.remove(view)
         r0 = R.path("figures", n + "_original.png")
-        R.run("render", original, "-o", r0, "--view", view, "--width", size[0], "--height", size[1])
+        R.run("render", original, "-o", r0, "--view", view, "--width", size[0], "--height", size[1], *RENDER_THREADS)
         cells.append(r0)
         for tag, inp in (("spheres", by_name[n]["atom_sets"]["paper"]["atoms"]),
                          ("garbing", by_name[n]["atom_sets"]["paper"]["m2"])):
@@ -668,7 +674,8 @@ def figures(build, work, rows, fig11, fig14):
         imgs = []
         for r in fig14:
             png = R.path("figures", "cube_refine%d.png" % r["refine"])
-            R.run("render", r["mesh"], "-o", png, "--view", view, "--flat", "--width", size[0], "--height", size[1])
+            R.run("render", r["mesh"], "-o", png, "--view", view, "--flat", "--width", size[0], "--height", size[1],
+                  *RENDER_THREADS)
             imgs.append(png)
         montage(build, imgs, os.path.join(H.RESULTS, "figure14.png"), 3,
                 ["--refine %d: H %s%%, RMS %s%%" % (r["refine"], H.fmt(r["hausdorff_pct"]), H.fmt(r["rms_pct"])) for r in fig14], [])
@@ -681,7 +688,7 @@ def figures(build, work, rows, fig11, fig14):
         for tag in ("dual", "no_dual"):
             png = R.path("figures", "%s_fig11_%s.png" % (n, tag))
             R.run("render", R.path(n, "fig11_%s.off" % tag), "-o", png, "--view", view, "--flat",
-                  "--width", size[0], "--height", size[1])
+                  "--width", size[0], "--height", size[1], *RENDER_THREADS)
             imgs.append(png)
         montage(build, imgs, os.path.join(H.RESULTS, "figure11.png"), 2,
                 ["dual of M1 (after repair)", "M1 itself (--no-dual, after repair)"], [n])
