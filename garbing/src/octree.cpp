@@ -16,8 +16,15 @@ double Octree::side(int level) const { return std::ldexp(root_side, -level); }
 
 Eigen::AlignedBox3d Octree::cube(const OctreeCell& cell) const {
   const double s = side(cell.level);
-  const Eigen::Vector3d lo(cell.ijk[0] * s, cell.ijk[1] * s, cell.ijk[2] * s);
-  return {lo, lo + Eigen::Vector3d::Constant(s)};
+  // Both corners as integer x side, each rounded once: the same doubles as any other point
+  // of the lattice computed that way (an M1 face's corner, M2's dual vertex), which lo + side
+  // can miss by an ulp.
+  Eigen::Vector3d lo, hi;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = cell.ijk[a] * s;
+    hi[a] = (cell.ijk[a] + 1.0) * s;
+  }
+  return {lo, hi};
 }
 
 Eigen::Vector3d Octree::to_local(const Eigen::Vector3d& world) const {
@@ -57,25 +64,6 @@ void leaves_facing(const Octree& tree, int c, const std::array<int, 3>& offset,
     }
     if (facing) leaves_facing(tree, cell.first_child + k, offset, out);
   }
-}
-
-void active_leaves_containing(const Octree& tree, const Eigen::Vector3d& local, std::vector<int>& out) {
-  out.clear();
-  if (tree.cells.empty()) return;
-  int stack[64 * 8];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const int c = stack[--top];
-    const OctreeCell& cell = tree.cells[c];
-    if (!tree.cube(cell).contains(local)) continue;
-    if (cell.is_leaf()) {
-      if (cell.is_active()) out.push_back(c);
-    } else {
-      for (int k = 0; k < 8; ++k) stack[top++] = cell.first_child + k;
-    }
-  }
-  std::sort(out.begin(), out.end());
 }
 
 void touching_leaves(const Octree& tree, int c, std::vector<int>& out) {

@@ -117,13 +117,18 @@ class Refiner {
     double& side = locale.side;
     side = tree_.root_side;
     double cover_side = 0;
+    // An M1 vertex is a lattice corner, but it reaches this frame through world coordinates
+    // (to_local), a few ulps off: on the boundary of active and inactive leaves it could
+    // fall inside an inactive leaf alone and get no primitive. Within this tolerance a leaf
+    // counts as containing the point.
+    const double tol = 1e-12 * tree_.root_side;
     std::vector<int> stack = {0};
     while (!stack.empty()) {
       const int c = stack.back();
       stack.pop_back();
       const OctreeCell& cell = tree_.cells[c];
       const Eigen::AlignedBox3d cube = tree_.cube(cell);
-      if (!cube.contains(p)) continue;
+      if (!(cube.exteriorDistance(p) <= tol)) continue;
       if (!cell.is_leaf()) {
         for (int k = 0; k < 8; ++k) stack.push_back(cell.first_child + k);
         continue;
@@ -248,11 +253,7 @@ class Refiner {
   /// for the caller's query over all primitives, when v lies in P, no entry comes by t_limit,
   /// or the walk crosses more than a few leaves or cannot follow the ray.
   bool local_entry(const Vec3& v, const Vec3& dir, const Locale& locale, double t_limit, double& t) const {
-    // A dual vertex lies on its owner's cube, which the octree computes as lo + side: the
-    // vertex's own coordinate, (corner + 1) * side, can fall an ulp outside. Such a vertex
-    // counts as in the cover, to the same rounding as the octree's own cube tests.
-    if (!opt_.local_queries || !locale.prims || !(locale.cover.exteriorDistance(v) <= 1e-12 * locale.side))
-      return false;
+    if (!opt_.local_queries || !locale.prims || !locale.cover.contains(v)) return false;
     double first = std::numeric_limits<double>::infinity();
     bool inside = false;
     auto enter = [&](PrimitiveId g) {

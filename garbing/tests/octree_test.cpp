@@ -292,6 +292,33 @@ TEST(Octree, TouchingLeavesMatchesBruteForce) {
   }
 }
 
+TEST(Octree, CubesTileWithoutGapsOrOverlaps) {
+  // Neighbouring cubes share their face plane exactly, and every corner is the same double
+  // as the lattice point (corner x side at the finest level): no point falls between leaves.
+  const auto t = mg::build_octree(mg_test::blob(15, 0.1, 0.4, 3));
+  const double unit = t.side(t.depth);
+  std::size_t shared = 0;
+  for (int c : t.leaves) {
+    const mg::OctreeCell& cell = t.cells[c];
+    const Eigen::AlignedBox3d cube = t.cube(cell);
+    const std::int64_t scale = std::int64_t(1) << (t.depth - cell.level);
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(cube.min()[a], static_cast<double>(cell.ijk[a] * scale) * unit);
+      ASSERT_EQ(cube.max()[a], static_cast<double>((cell.ijk[a] + 1) * scale) * unit);
+      // The neighbour across the upper face, at the same level or coarser.
+      std::array<std::int64_t, 3> ijk = {cell.ijk[0], cell.ijk[1], cell.ijk[2]};
+      ++ijk[a];
+      const int n = mg::find_cell(t, cell.level, ijk);
+      if (n < 0) continue;
+      const mg::OctreeCell& other = t.cells[n];
+      if (other.level > cell.level) continue;
+      EXPECT_EQ(t.cube(other).min()[a], cube.max()[a]) << "leaf " << c << " axis " << a;
+      ++shared;
+    }
+  }
+  EXPECT_GT(shared, t.leaves.size());
+}
+
 TEST(Octree, RefusesBadInput) {
   EXPECT_THROW(mg::build_octree(mg::MedialSurface{}), mg::InvalidInput);
   EXPECT_THROW(mg::build_octree(atoms({{Eigen::Vector3d::Zero(), std::numeric_limits<double>::quiet_NaN()}})),

@@ -97,9 +97,6 @@ int find_cell(const Octree& tree, int level, const std::array<std::int64_t, 3>& 
 void leaves_facing(const Octree& tree, int c, const std::array<int, 3>& offset,
                    std::vector<int>& out);
 
-/// Active leaves whose closed cube contains `local` (root frame), sorted by index.
-void active_leaves_containing(const Octree& tree, const Eigen::Vector3d& local, std::vector<int>& out);
-
 /// Leaves whose closed cells touch the closed cell `c` (share at least a point), any level,
 /// sorted by index, without `c` itself.
 void touching_leaves(const Octree& tree, int c, std::vector<int>& out);
