@@ -48,3 +48,13 @@ function(mg_add_gtest name)
     gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
   endif()
 endfunction()
+
+# mg_add_benchmark(<name> SOURCES ... LIBS ...): a Google Benchmark program in <build>/bench/
+# (not a test: benchmarks measure, tests assert).
+function(mg_add_benchmark name)
+  cmake_parse_arguments(A "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${A_SOURCES})
+  target_link_libraries(${name} PRIVATE ${A_LIBS} mg::bench_support)
+  mg_set_warnings(${name})
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bench)
+endfunction()

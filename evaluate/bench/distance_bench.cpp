@@ -2,7 +2,7 @@
 // (max(1e6, 10 (V_a + V_b)) per side). Target: under 2 s on 2 cores.
 //   build/bin/evaluate_bench --benchmark_filter=Distance --benchmark_repetitions=3
 #include "evaluate/mesh_distance.h"
-#include "garbing/shapes.h"
+#include "core/shapes.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>

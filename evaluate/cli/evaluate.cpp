@@ -17,10 +17,10 @@
 #include "evaluate/normals.h"
 #include "evaluate/timing.h"
 #include "evaluate/vdb_mesh.h"
-#include "garbing/atomic_file.h"
-#include "garbing/cli_main.h"
-#include "garbing/medial_surface.h"
-#include "garbing/mesh_io.h"
+#include "core/atomic_file.h"
+#include "core/cli_main.h"
+#include "core/medial_surface.h"
+#include "core/mesh_io.h"
 
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
@@ -151,7 +151,7 @@ int evaluate_main(int argc, char** argv) {
   auto* atoms_cmd = app.add_subcommand(
       "atoms", "two-sided distances between MESH and G, the union of the atoms' spheres and cones");
   std::string atoms_file, cones = "rt";
-  double cone_filter = mg::ConeOptions{}.min_circle_ratio, cone_collar = mg::ConeOptions{}.max_collar,
+  double cone_filter = mg::garbing::ConeOptions{}.min_circle_ratio, cone_collar = mg::garbing::ConeOptions{}.max_collar,
          diagonal = 0;
   Report atoms_report;
   atoms_cmd->add_option("mesh", mesh_path, "mesh to judge")->required();
@@ -292,7 +292,7 @@ int evaluate_main(int argc, char** argv) {
     const mg::PolygonSoup mesh = mg::read_polygon_soup(mesh_path);
     const mg::MedialSurface atoms = mg::read_medial_surface(atoms_file);
     ev::AtomsDistanceOptions opt;
-    opt.cones.source = mg::parse_cone_source(cones);
+    opt.cones.source = mg::garbing::parse_cone_source(cones);
     opt.cones.min_circle_ratio = cone_filter;
     opt.cones.max_collar = cone_collar;
     opt.samples = samples;

@@ -1,7 +1,7 @@
 #include "evaluate/atoms_distance.h"
 
 #include "evaluate/mesh_distance.h"
-#include "garbing/errors.h"
+#include "core/errors.h"
 
 #include <tbb/parallel_for.h>
 
@@ -12,7 +12,7 @@ namespace mg::evaluate {
 AtomsDistance atoms_distance(const PolygonSoup& mesh, const MedialSurface& atoms,
                              const AtomsDistanceOptions& opt, const std::string& name) {
   validate(atoms);
-  const TargetShape shape(atoms, cone_pairs(atoms, opt.cones));
+  const garbing::TargetShape shape = garbing::make_target_shape(atoms, opt.cones);
   const TriangleIndex index(mesh, name);
   AtomsDistance r;
   r.cones = shape.cone_count();

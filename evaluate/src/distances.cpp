@@ -1,6 +1,7 @@
 #include "evaluate/distances.h"
 
-#include "garbing/errors.h"
+#include "core/errors.h"
+#include "core/random.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -12,18 +13,10 @@
 namespace mg::evaluate {
 namespace {
 
-/// splitmix64 finaliser: a counter-based generator (value k depends only on the seed and k).
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-/// Uniform in [0, 1): draw `index` of stream `stream` of `seed`.
+/// Uniform in [0, 1): draw `index` of stream `stream` of `seed` (counter based: value k
+/// depends only on the seed, the stream and k).
 double uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
-  const std::uint64_t bits = mix(mix(seed ^ mix(stream)) + index);
-  return static_cast<double>(bits >> 11) * 0x1.0p-53;
+  return unit_interval(splitmix64(splitmix64(seed ^ splitmix64(stream)) + index));
 }
 
 enum Stream : std::uint64_t { kFaceOffset = 1, kEdgeOffset, kBary1, kBary2 };
@@ -108,18 +101,6 @@ TwoSidedDistance two_sided_distance(const SurfaceSamples& on_a, const DistanceOr
 double percent_of_diagonal(double value, double diagonal) {
   if (!(diagonal > 0)) throw InvalidInput("bounding-box diagonal must be > 0");
   return 100.0 * value / diagonal;
-}
-
-Triangles fan_triangles(const PolygonSoup& soup) {
-  Triangles t;
-  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
-    const auto& face = soup.faces[f];
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-      t.corners.push_back({face[0], face[i], face[i + 1]});
-      t.face.push_back(f);
-    }
-  }
-  return t;
 }
 
 TriangleSamples sample_triangles(const PolygonSoup& soup, const Triangles& triangles,

@@ -1,15 +1,8 @@
-// CGAL translation unit of the geometric checks: box intersection and exact triangle predicates.
+// evaluate check: the combinatorial report of mg::mesh_topology and the geometric checks, whose
+// intersection test is the fold repair's (mg::find_triangle_defects).
 #include "evaluate/mesh_checks.h"
 
-#include "evaluate/distances.h"
-#include "garbing/detail/cgal_conversions.h"
-
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/box_intersection_d.h>
-#include <CGAL/intersections.h>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "core/triangle_defects.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,61 +11,7 @@
 namespace mg::evaluate {
 namespace {
 
-using Kernel = CGAL::Epick;
-using Point = Kernel::Point_3;
-using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
-
 constexpr double kDegrees = 57.29577951308232;  // 180 / pi
-
-struct Tri {
-  std::array<int, 3> v;
-  std::array<Point, 3> p;
-  Kernel::Triangle_3 triangle() const { return {p[0], p[1], p[2]}; }
-};
-
-/// Whether two non-degenerate triangles intersect other than along what their indices share.
-bool improper_intersection(const Tri& a, const Tri& b) {
-  int shared = 0;
-  int ia = -1, ib = -1;  // a corner of a / b that the other does not share (last found)
-  std::array<bool, 3> a_shared{}, b_shared{};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (a.v[i] == b.v[j]) {
-        ++shared;
-        a_shared[i] = b_shared[j] = true;
-      }
-  for (int i = 0; i < 3; ++i) {
-    if (!a_shared[i]) ia = i;
-    if (!b_shared[i]) ib = i;
-  }
-  switch (shared) {
-    case 0:
-      return CGAL::do_intersect(a.triangle(), b.triangle());
-    case 1: {
-      // They meet at the shared vertex; anything more shows as the opposite edge of one
-      // crossing the other triangle.
-      std::array<int, 2> ea{}, eb{};
-      int na = 0, nb = 0;
-      for (int i = 0; i < 3; ++i) {
-        if (!a_shared[i]) ea[na++] = i;
-        if (!b_shared[i]) eb[nb++] = i;
-      }
-      const Kernel::Segment_3 sa(a.p[ea[0]], a.p[ea[1]]), sb(b.p[eb[0]], b.p[eb[1]]);
-      return CGAL::do_intersect(sa, b.triangle()) || CGAL::do_intersect(sb, a.triangle());
-    }
-    case 2: {
-      // Sharing an edge pq: they overlap iff coplanar with the free corners on the same side.
-      int p = -1, q = -1;
-      for (int i = 0; i < 3; ++i)
-        if (a_shared[i]) (p < 0 ? p : q) = i;
-      const Point &pp = a.p[p], &pq = a.p[q], &r = a.p[ia], &s = b.p[ib];
-      return CGAL::coplanar(pp, pq, r, s) &&
-             CGAL::coplanar_orientation(pp, pq, r, s) == CGAL::POSITIVE;
-    }
-    default:
-      return true;  // the same three vertices: a duplicated face
-  }
-}
 
 }  // namespace
 
@@ -82,52 +21,43 @@ MeshCheck check_mesh(const PolygonSoup& soup) {
   for (const auto& f : soup.faces)
     if (f.size() > 3) ++c.non_triangle_faces;
 
+  // The faces fanned into triangles, checked as the fold repair checks M2.
   const Triangles fan = fan_triangles(soup);
   c.triangles = fan.corners.size();
-  std::vector<Tri> tris;
-  std::vector<std::size_t> face_of;
-  std::vector<Box> boxes;
+  PolygonSoup triangles;
+  triangles.points = soup.points;
+  triangles.faces.reserve(fan.corners.size());
+  for (const auto& t : fan.corners) triangles.faces.push_back({t[0], t[1], t[2]});
+  const TriangleDefects d = find_triangle_defects(triangles);
+  c.degenerate_triangles = d.degenerate_faces.size();
+  if (!d.degenerate_faces.empty())
+    c.first_degenerate =
+        "face " + std::to_string(fan.face[d.degenerate_faces.front()]) + " is degenerate (collinear corners)";
+
+  // Smallest angle over the triangles that are not degenerate.
   double min_angle = 180;
+  std::size_t next_degenerate = 0;
   for (std::size_t i = 0; i < fan.corners.size(); ++i) {
-    Tri t;
-    t.v = fan.corners[i];
-    for (int k = 0; k < 3; ++k) t.p[k] = detail::to_cgal_point<Kernel>(soup.points[t.v[k]]);
-    if (CGAL::collinear(t.p[0], t.p[1], t.p[2])) {
-      if (c.degenerate_triangles++ == 0)
-        c.first_degenerate =
-            "face " + std::to_string(fan.face[i]) + " is degenerate (collinear corners)";
+    if (next_degenerate < d.degenerate_faces.size() &&
+        d.degenerate_faces[next_degenerate] == static_cast<int>(i)) {
+      ++next_degenerate;
       continue;
     }
+    const auto& t = fan.corners[i];
     for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d e1 = soup.points[t.v[(k + 1) % 3]] - soup.points[t.v[k]];
-      const Eigen::Vector3d e2 = soup.points[t.v[(k + 2) % 3]] - soup.points[t.v[k]];
+      const Eigen::Vector3d e1 = soup.points[t[(k + 1) % 3]] - soup.points[t[k]];
+      const Eigen::Vector3d e2 = soup.points[t[(k + 2) % 3]] - soup.points[t[k]];
       min_angle = std::min(min_angle, kDegrees * std::atan2(e1.cross(e2).norm(), e1.dot(e2)));
     }
-    boxes.emplace_back(t.triangle().bbox(), tris.size());
-    tris.push_back(t);
-    face_of.push_back(fan.face[i]);
   }
-  c.min_angle_deg = tris.empty() ? 0.0 : min_angle;
+  c.min_angle_deg = d.degenerate_faces.size() == fan.corners.size() ? 0.0 : min_angle;
 
-  // Candidate pairs: overlapping closed boxes, pairs within one polygon excluded.
-  std::vector<std::pair<std::size_t, std::size_t>> candidates;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-    const std::size_t i = std::min(a.info(), b.info()), j = std::max(a.info(), b.info());
-    if (face_of[i] != face_of[j]) candidates.emplace_back(i, j);
-  });
-  std::vector<char> hit(candidates.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 256),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t k = r.begin(); k != r.end(); ++k)
-                        hit[k] = improper_intersection(tris[candidates[k].first],
-                                                       tris[candidates[k].second]);
-                    });
+  // Intersecting pairs of faces: pairs of triangles of one polygon do not count.
   std::vector<std::pair<std::size_t, std::size_t>> face_pairs;
-  for (std::size_t k = 0; k < candidates.size(); ++k)
-    if (hit[k]) {
-      const std::size_t fa = face_of[candidates[k].first], fb = face_of[candidates[k].second];
-      face_pairs.emplace_back(std::min(fa, fb), std::max(fa, fb));
-    }
+  for (const auto& [i, j] : d.intersecting_pairs) {
+    const std::size_t fa = fan.face[i], fb = fan.face[j];
+    if (fa != fb) face_pairs.emplace_back(std::min(fa, fb), std::max(fa, fb));
+  }
   std::sort(face_pairs.begin(), face_pairs.end());
   face_pairs.erase(std::unique(face_pairs.begin(), face_pairs.end()), face_pairs.end());
   c.intersecting_pairs = face_pairs.size();

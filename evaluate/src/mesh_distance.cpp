@@ -1,8 +1,8 @@
 // The CGAL AABB-tree translation unit of mg::evaluate: closest points on a triangle soup.
 #include "evaluate/mesh_distance.h"
 
-#include "garbing/detail/cgal_conversions.h"
-#include "garbing/errors.h"
+#include "core/detail/cgal_conversions.h"
+#include "core/errors.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

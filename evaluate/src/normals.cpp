@@ -2,7 +2,8 @@
 
 #include "evaluate/distances.h"
 #include "evaluate/mesh_distance.h"
-#include "garbing/errors.h"
+#include "core/mesh_normals.h"
+#include "core/errors.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -20,25 +21,6 @@ Eigen::Vector3d facet_normal(const PolygonSoup& soup, const std::array<int, 3>& 
   const Eigen::Vector3d n = (soup.points[t[1]] - a).cross(soup.points[t[2]] - a);
   const double len = n.norm();
   return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
-}
-
-/// Angle-weighted vertex normals (Thuermer and Wuethrich), unit or zero.
-std::vector<Eigen::Vector3d> vertex_normals(const PolygonSoup& soup, const Triangles& tris) {
-  std::vector<Eigen::Vector3d> n(soup.points.size(), Eigen::Vector3d::Zero());
-  for (const auto& t : tris.corners) {
-    const Eigen::Vector3d fn = facet_normal(soup, t);
-    if (fn.isZero()) continue;
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d e1 = soup.points[t[(i + 1) % 3]] - soup.points[t[i]];
-      const Eigen::Vector3d e2 = soup.points[t[(i + 2) % 3]] - soup.points[t[i]];
-      n[t[i]] += std::atan2(e1.cross(e2).norm(), e1.dot(e2)) * fn;
-    }
-  }
-  for (auto& v : n) {
-    const double len = v.norm();
-    v = len > 0 ? Eigen::Vector3d(v / len) : Eigen::Vector3d::Zero();
-  }
-  return n;
 }
 
 /// Barycentric coordinates of p (on or near triangle abc), clamped to the triangle.
@@ -73,7 +55,7 @@ NormalDeviation normal_deviation(const PolygonSoup& mesh, const PolygonSoup& ref
   sample_triangles(reference, ref_tris, 1, opt.seed, reference_name);
   const TriangleIndex index(reference, reference_name);
   const std::vector<Eigen::Vector3d> ref_vertex_normals =
-      opt.smooth_reference ? vertex_normals(reference, ref_tris) : std::vector<Eigen::Vector3d>{};
+      opt.smooth_reference ? vertex_normals(reference, NormalWeighting::angle) : std::vector<Eigen::Vector3d>{};
 
   const std::size_t n = samples.points.size();
   std::vector<double> angle(n, -1.0);  // -1: reference normal undefined

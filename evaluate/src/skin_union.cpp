@@ -1,8 +1,8 @@
 // The CGAL Skin_surface_3 translation unit: skin surface and union of balls baselines.
 #include "evaluate/baselines.h"
 
-#include "garbing/detail/cgal_conversions.h"
-#include "garbing/errors.h"
+#include "core/detail/cgal_conversions.h"
+#include "core/errors.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyhedron_3.h>

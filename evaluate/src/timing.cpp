@@ -1,6 +1,6 @@
 #include "evaluate/timing.h"
 
-#include "garbing/errors.h"
+#include "core/errors.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,7 +1,7 @@
 // Voxel-size searches for the OpenVDB baseline (no OpenVDB code here: vdb_mesh() does that).
 #include "evaluate/vdb_mesh.h"
 
-#include "garbing/errors.h"
+#include "core/errors.h"
 
 #include <algorithm>
 #include <cmath>

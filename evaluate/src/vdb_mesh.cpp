@@ -1,7 +1,7 @@
 // The OpenVDB translation unit: spheres to a narrow-band level set, level set to a mesh.
 #include "evaluate/vdb_mesh.h"
 
-#include "garbing/errors.h"
+#include "core/errors.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>

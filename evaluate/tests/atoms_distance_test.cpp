@@ -1,6 +1,6 @@
 #include "evaluate/atoms_distance.h"
-#include "garbing/refine_mesh.h"
-#include "garbing/shapes.h"
+#include "garbing/garb.h"
+#include "core/shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -32,14 +32,13 @@ TEST(AtomsDistance, SphereMeshAgainstItsAtomIsTheChordalError) {
 TEST(AtomsDistance, FineGarbingOfTwoBallsIsNearZero) {
   mg::MedialSurface s;
   s.atoms = {{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.2, 0.3, -0.2), 0.7}};
-  mg::OctreeOptions topt;
-  topt.min_depth = 6;
-  topt.cones.min_circle_ratio = 0;  // keep the cone of these two balls
-  topt.cones.max_collar = 0;
-  const mg::Octree tree = mg::build_octree(s, topt);
-  const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s);
+  mg::garbing::GarbOptions gopt;
+  gopt.octree.min_depth = 6;
+  gopt.cones.min_circle_ratio = 0;  // keep the cone of these two balls
+  gopt.cones.max_collar = 0;
+  const auto m2 = mg::garbing::garb(s, gopt).m2;
   ev::AtomsDistanceOptions aopt;
-  aopt.cones = topt.cones;
+  aopt.cones = gopt.cones;
   const auto r = ev::atoms_distance(mg::soup_from_mesh(m2.mesh), s, aopt, "m2");
   EXPECT_LT(r.distance.hausdorff, 2e-3 * r.diagonal);  // chordal error of a leaf-size mesh
   EXPECT_LT(r.distance.rms, 2e-4 * r.diagonal);

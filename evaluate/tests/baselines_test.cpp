@@ -3,8 +3,8 @@
 #include "evaluate/mesh_checks.h"
 #include "evaluate/timing.h"
 #include "evaluate/vdb_mesh.h"
-#include "garbing/errors.h"
-#include "garbing/shapes.h"
+#include "core/errors.h"
+#include "core/shapes.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -1,6 +1,6 @@
 // Mesh checks (mesh_checks.h): topology, intersections and degenerate triangles apart.
 #include "evaluate/mesh_checks.h"
-#include "garbing/shapes.h"
+#include "core/shapes.h"
 
 #include <gtest/gtest.h>
 

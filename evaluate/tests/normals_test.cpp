@@ -1,8 +1,8 @@
 // Normal deviation (normals.h).
 #include "evaluate/normals.h"
 #include "evaluate/baselines.h"
-#include "garbing/errors.h"
-#include "garbing/shapes.h"
+#include "core/errors.h"
+#include "core/shapes.h"
 
 #include <gtest/gtest.h>
 

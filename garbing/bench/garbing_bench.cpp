@@ -1,27 +1,38 @@
 // Benchmarks of the garbing stages on a medial surface file.
 //   garbing_bench --atoms FILE.ma [Google Benchmark options]
-// Reports octree + M1 wrapping G (balls and cones: the default), octree + M1 over the balls
-// alone (--cones none: issue 4's measurement), and the whole garbing (octree + M1 + M2).
-#include "garbing/coarse_mesh.h"
-#include "garbing/errors.h"
-#include "garbing/octree.h"
-#include "garbing/refine_mesh.h"
+// Reports G (choosing the cone pairs, building the primitives and their hierarchy), octree + M1
+// wrapping G (balls and cones: the default) and over the balls alone (cones:0), and the whole
+// garbing (G + octree + M1 + M2: garb()).
+#include "core/medial_surface.h"
+#include "garbing/garb.h"
 
-#include <benchmark/benchmark.h>
-
-#include <cstring>
-#include <iostream>
+#include "bench_main.h"
 
 namespace {
 
+namespace gb = mg::garbing;
+
 mg::MedialSurface g_atoms;
 
-void octree_and_m1(benchmark::State& state) {
-  mg::OctreeOptions opt;
-  if (state.range(0) == 0) opt.cones.source = mg::ConeSource::none;
+gb::TargetShape shape(const gb::ConeOptions& cones = {}) {
+  return gb::make_target_shape(g_atoms, cones, gb::bounding_cube_frame(g_atoms));
+}
+
+void target_shape(benchmark::State& state) {
   for (auto _ : state) {
-    const mg::Octree tree = mg::build_octree(g_atoms, opt);
-    const mg::CoarseMesh m1 = mg::extract_coarse_mesh(tree);
+    const gb::TargetShape g = shape();
+    benchmark::DoNotOptimize(g.cone_count());
+    state.counters["cones"] = static_cast<double>(g.cone_count());
+  }
+}
+
+void octree_and_m1(benchmark::State& state) {
+  gb::ConeOptions cones;
+  if (state.range(0) == 0) cones.source = gb::ConeSource::none;
+  const gb::TargetShape g = shape(cones);
+  for (auto _ : state) {
+    const gb::Octree tree = gb::build_octree(g);
+    const gb::CoarseMesh m1 = gb::extract_coarse_mesh(tree);
     benchmark::DoNotOptimize(m1.mesh.n_faces());
     state.counters["m1_faces"] = static_cast<double>(m1.mesh.n_faces());
     state.counters["leaves"] = static_cast<double>(tree.leaves.size());
@@ -29,18 +40,16 @@ void octree_and_m1(benchmark::State& state) {
 }
 
 void whole_garbing(benchmark::State& state) {
-  mg::RefineOptions opt;
   for (auto _ : state) {
-    const mg::Octree tree = mg::build_octree(g_atoms);
-    const mg::CoarseMesh m1 = mg::extract_coarse_mesh(tree);
-    const mg::RefinedMesh m2 = mg::refine_mesh(m1, tree, g_atoms, opt);
-    benchmark::DoNotOptimize(m2.mesh.n_faces());
-    state.counters["m2_vertices"] = static_cast<double>(m2.mesh.n_vertices());
-    state.counters["cones"] = static_cast<double>(m2.stats.cones);
-    state.counters["folds_before_repair"] = static_cast<double>(m2.stats.intersecting_before);
+    const gb::Garbing r = gb::garb(g_atoms);
+    benchmark::DoNotOptimize(r.m2.mesh.n_faces());
+    state.counters["m2_vertices"] = static_cast<double>(r.m2.mesh.n_vertices());
+    state.counters["cones"] = static_cast<double>(r.g.cone_count());
+    state.counters["folds_before_repair"] = static_cast<double>(r.m2.stats.intersecting_before);
   }
 }
 
+BENCHMARK(target_shape)->Unit(benchmark::kMillisecond)->UseRealTime();
 // Argument: 1 = wrap G (cones rt, the default), 0 = the balls alone.
 BENCHMARK(octree_and_m1)->ArgName("cones")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(whole_garbing)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -48,26 +57,8 @@ BENCHMARK(whole_garbing)->Unit(benchmark::kMillisecond)->UseRealTime();
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string path;
-  std::vector<char*> rest = {argv[0]};
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--atoms") == 0 && i + 1 < argc)
-      path = argv[++i];
-    else
-      rest.push_back(argv[i]);
-  }
-  if (path.empty()) {
-    std::cerr << "usage: garbing_bench --atoms FILE.ma [benchmark options]\n";
-    return 2;
-  }
-  try {
+  return mg::bench::run_benchmarks(argc, argv, "garbing_bench", "--atoms", [](const std::string& path) {
+    if (path.empty()) throw mg::InvalidInput("usage: garbing_bench --atoms FILE.ma [benchmark options]");
     g_atoms = mg::read_medial_surface(path);
-  } catch (const mg::Error& e) {
-    std::cerr << "garbing_bench: " << e.what() << '\n';
-    return 2;
-  }
-  int n = static_cast<int>(rest.size());
-  benchmark::Initialize(&n, rest.data());
-  benchmark::RunSpecifiedBenchmarks();
-  return 0;
+  });
 }

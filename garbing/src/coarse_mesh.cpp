@@ -1,6 +1,7 @@
 #include "garbing/coarse_mesh.h"
 
-#include "garbing/errors.h"
+#include "core/errors.h"
+#include "core/union_find.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -8,27 +9,10 @@
 #include <algorithm>
 #include <numeric>
 
-namespace mg {
+namespace mg::garbing {
 namespace {
 
 using Lattice = std::array<std::int64_t, 3>;
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 /// One directed use of an M1 edge by a face loop.
 struct EdgeUse {
@@ -356,4 +340,4 @@ CoarseMesh extract_coarse_mesh(const Octree& tree) {
   return Extractor(tree).run();
 }
 
-}  // namespace mg
+}  // namespace mg::garbing

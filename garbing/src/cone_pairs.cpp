@@ -1,7 +1,6 @@
-// cone_pairs(): which pairs of atoms get a cone. The one CGAL translation unit of mg::garbing
-// that builds a regular triangulation.
-#include "garbing/detail/cgal_conversions.h"
-#include "garbing/errors.h"
+// cone_pairs(): which pairs of atoms get a cone. The one CGAL translation unit of mg::garbing.
+#include "core/detail/cgal_conversions.h"
+#include "core/errors.h"
 #include "garbing/target_shape.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -13,7 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace mg {
+namespace mg::garbing {
 namespace {
 
 using K = CGAL::Epick;
@@ -29,7 +28,7 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
   std::vector<std::pair<Regular::Weighted_point, int>> points;
   points.reserve(atoms.atoms.size());
   for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
-    points.emplace_back(detail::to_weighted_point<K>(atoms.atoms[i]), static_cast<int>(i));
+    points.emplace_back(mg::detail::to_weighted_point<K>(atoms.atoms[i]), static_cast<int>(i));
   Regular rt(points.begin(), points.end());
   // The six edges of every finite cell, bucketed by their lower atom and each kept once.
   // (CGAL's edge iterator turns around every edge to visit it once, and
@@ -120,8 +119,8 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
     const double L = (b.centre - a.centre).norm();
     if (!(L < a.radius + b.radius) || !(L > std::abs(a.radius - b.radius))) continue;
     // Radius of the intersection circle against the smaller radius.
-    const double x = (L * L + a.radius * a.radius - b.radius * b.radius) / (2 * L);
-    const double h = std::sqrt(std::max(0.0, a.radius * a.radius - x * x));
+    const Crease c = crease(L, a.radius, b.radius);
+    const double x = c.along, h = c.radius;
     if (h < opt.min_circle_ratio * std::min(a.radius, b.radius)) continue;
     // Collar: how far the lateral surface stands off the crease where the two spheres meet
     // (in the axial section the lateral line is x sin(phi) + y cos(phi) = r1, the crease is
@@ -134,4 +133,4 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
   return pairs;
 }
 
-}  // namespace mg
+}  // namespace mg::garbing

@@ -1,7 +1,9 @@
 #pragma once
 // Generated atom sets for the garbing tests.
 
-#include "garbing/medial_surface.h"
+#include "core/medial_surface.h"
+#include "garbing/octree.h"
+#include "garbing/target_shape.h"
 
 #include <cmath>
 #include <random>
@@ -40,6 +42,19 @@ inline mg::MedialSurface blob(int n, double rmin, double rmax, unsigned seed) {
     s.atoms.push_back({Eigen::Vector3d(x, y, z), r(gen)});
   }
   return s;
+}
+
+/// G of the atoms as the garbing builds it: in their bounding cube frame.
+inline mg::garbing::TargetShape shape_of(const mg::MedialSurface& s,
+                                         const mg::garbing::ConeOptions& cones = {}) {
+  return mg::garbing::make_target_shape(s, cones, mg::garbing::bounding_cube_frame(s));
+}
+
+/// Step 1 on the atoms' G (the octree keeps no reference to G).
+inline mg::garbing::Octree octree_of(const mg::MedialSurface& s,
+                                     const mg::garbing::OctreeOptions& opt = {},
+                                     const mg::garbing::ConeOptions& cones = {}) {
+  return mg::garbing::build_octree(shape_of(s, cones), opt);
 }
 
 }  // namespace mg_test

@@ -1,5 +1,5 @@
 #include "garbing/coarse_mesh.h"
-#include "garbing/mesh_topology.h"
+#include "core/mesh_topology.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -14,22 +14,22 @@ namespace {
 using mg_test::atoms;
 using FaceKey = std::tuple<int, int, int, long, long, long>;  // axis, sign, level, corner
 
-mg::MeshTopology topology_of(const mg::CoarseMesh& m1) {
+mg::MeshTopology topology_of(const mg::garbing::CoarseMesh& m1) {
   return mg::mesh_topology(mg::soup_from_mesh(m1.mesh));
 }
 
-mg::CoarseMesh m1_of(const mg::MedialSurface& s, mg::OctreeOptions opt = {}) {
-  return mg::extract_coarse_mesh(mg::build_octree(s, opt));
+mg::garbing::CoarseMesh m1_of(const mg::MedialSurface& s, mg::garbing::OctreeOptions opt = {}) {
+  return mg::garbing::extract_coarse_mesh(mg_test::octree_of(s, opt));
 }
 
-std::set<FaceKey> face_set(const mg::CoarseMesh& m1) {
+std::set<FaceKey> face_set(const mg::garbing::CoarseMesh& m1) {
   std::set<FaceKey> out;
   for (const auto& f : m1.faces)
     out.insert({f.axis, f.sign, f.level, f.corner[0], f.corner[1], f.corner[2]});
   return out;
 }
 
-void expect_closed_manifold(const mg::CoarseMesh& m1, const std::string& what) {
+void expect_closed_manifold(const mg::garbing::CoarseMesh& m1, const std::string& what) {
   const auto t = topology_of(m1);
   EXPECT_TRUE(t.closed) << what;
   EXPECT_TRUE(t.manifold) << what << ": " << t.first_problem;
@@ -44,7 +44,7 @@ TEST(CoarseMesh, OneSphereAtAutomaticDepthHasThePapersFaceCount) {
 }
 
 /// Faces between active and inactive cells of a uniform grid at `level` over the same root.
-std::set<FaceKey> uniform_grid_faces(const mg::MedialAtom& ball, const mg::Octree& t, int level) {
+std::set<FaceKey> uniform_grid_faces(const mg::MedialAtom& ball, const mg::garbing::Octree& t, int level) {
   const long n = 1L << level;
   const double s = t.side(level);
   const Eigen::Vector3d c = t.to_local(ball.centre);
@@ -80,10 +80,10 @@ std::set<FaceKey> uniform_grid_faces(const mg::MedialAtom& ball, const mg::Octre
 TEST(CoarseMesh, OneSphereMatchesTheUniformGridAtDepths4To6) {
   const mg::MedialAtom ball{Eigen::Vector3d(0.1, 0.2, -0.3), 0.7};
   for (int level : {4, 5, 6}) {
-    mg::OctreeOptions opt;
+    mg::garbing::OctreeOptions opt;
     opt.min_depth = level;
-    const auto t = mg::build_octree(atoms({ball}), opt);
-    const auto m1 = mg::extract_coarse_mesh(t);
+    const auto t = mg_test::octree_of(atoms({ball}), opt);
+    const auto m1 = mg::garbing::extract_coarse_mesh(t);
     EXPECT_EQ(face_set(m1), uniform_grid_faces(ball, t, level)) << "level " << level;
     expect_closed_manifold(m1, "sphere at level " + std::to_string(level));
   }
@@ -100,7 +100,7 @@ TEST(CoarseMesh, ClosedManifoldWithEachCriterionOff) {
       {"gap", atoms({{Eigen::Vector3d(-1.005, 0, 0), 1}, {Eigen::Vector3d(1.005, 0, 0), 1}})}};
   for (const auto& [name, s] : inputs)
     for (int off = 0; off <= 4; ++off) {
-      mg::OctreeOptions opt;
+      mg::garbing::OctreeOptions opt;
       opt.max_depth = 11;  // bounds the tree where near-touching balls drive criterion 3
       if (off > 0) opt.criteria[off - 1] = false;
       expect_closed_manifold(m1_of(s, opt), name + " without criterion " + std::to_string(off));
@@ -109,7 +109,7 @@ TEST(CoarseMesh, ClosedManifoldWithEachCriterionOff) {
 
 TEST(CoarseMesh, InteriorCellShortcutChangesNoFace) {
   for (const auto& s : {mg_test::blob(30, 0.1, 0.3, 11), mg_test::ring(60, 1.0, 0.3)}) {
-    mg::OctreeOptions full;
+    mg::garbing::OctreeOptions full;
     full.skip_interior_cells = false;
     const auto a = m1_of(s), b = m1_of(s, full);
     EXPECT_EQ(face_set(a), face_set(b));
@@ -137,7 +137,7 @@ TEST(CoarseMesh, LeavesMeetingAlongAnEdgeOrAtACornerCloseSeparately) {
       {"corner", atoms({{Eigen::Vector3d(-c3, -c3, -c3), 1}, {Eigen::Vector3d(c3, c3, c3), 1}}), 5}};
   for (const auto& tc : cases) {
     for (bool criterion3 : {false, true}) {
-      mg::OctreeOptions opt;
+      mg::garbing::OctreeOptions opt;
       opt.min_depth = tc.depth;
       opt.criteria[2] = criterion3;
       const auto m1 = m1_of(tc.s, opt);
@@ -154,10 +154,10 @@ TEST(CoarseMesh, LeavesMeetingAlongAnEdgeOrAtACornerCloseSeparately) {
 
 TEST(CoarseMesh, TwoBallsWithASmallGapStaySeparateUnlessCriterionThreeIsOff) {
   const auto s = atoms({{Eigen::Vector3d(-1.005, 0, 0), 1}, {Eigen::Vector3d(1.005, 0, 0), 1}});
-  const auto t = mg::build_octree(s);
+  const auto t = mg_test::octree_of(s);
   EXPECT_GE(t.depth, 10);
-  EXPECT_EQ(topology_of(mg::extract_coarse_mesh(t)).components, 2u);
-  mg::OctreeOptions opt;
+  EXPECT_EQ(topology_of(mg::garbing::extract_coarse_mesh(t)).components, 2u);
+  mg::garbing::OctreeOptions opt;
   opt.criteria[2] = false;
   const auto glued = topology_of(m1_of(s, opt));
   EXPECT_EQ(glued.components, 1u);  // without criterion 3 the two balls are glued
@@ -175,8 +175,8 @@ TEST(CoarseMesh, TwoChainsPassingCloseStaySeparate) {
 }
 
 TEST(CoarseMesh, FaceCentresAreTheSquareCentres) {
-  const auto t = mg::build_octree(mg_test::blob(20, 0.1, 0.3, 5));
-  const auto m1 = mg::extract_coarse_mesh(t);
+  const auto t = mg_test::octree_of(mg_test::blob(20, 0.1, 0.3, 5));
+  const auto m1 = mg::garbing::extract_coarse_mesh(t);
   ASSERT_EQ(m1.face_centres.size(), m1.mesh.n_faces());
   EXPECT_GT(m1.hanging_corners, 0u);  // faces of several levels meet
   // Every loop vertex lies in the square's plane within the half-diagonal of the square, and

@@ -1,4 +1,4 @@
-#include "garbing/errors.h"
+#include "core/errors.h"
 #include "garbing/octree.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@ namespace {
 using mg_test::atoms;
 
 /// Dimension of the contact of two closed cells (0 corner, 1 edge, 2 face), -1 if apart.
-int contact(const mg::OctreeCell& a, const mg::OctreeCell& b) {
+int contact(const mg::garbing::OctreeCell& a, const mg::garbing::OctreeCell& b) {
   const int level = std::max(a.level, b.level);
   int dim = 0;
   for (int k = 0; k < 3; ++k) {
@@ -26,7 +26,7 @@ int contact(const mg::OctreeCell& a, const mg::OctreeCell& b) {
   return dim;
 }
 
-std::vector<int> active_leaves(const mg::Octree& t) {
+std::vector<int> active_leaves(const mg::garbing::Octree& t) {
   std::vector<int> out;
   for (int c : t.leaves)
     if (t.cells[c].is_active()) out.push_back(c);
@@ -34,11 +34,11 @@ std::vector<int> active_leaves(const mg::Octree& t) {
 }
 
 TEST(Octree, OneSphereGetsDepthFourInATightRoot) {
-  const auto t = mg::build_octree(atoms({{Eigen::Vector3d(1, 2, 3), 1.0}}));
+  const auto t = mg_test::octree_of(atoms({{Eigen::Vector3d(1, 2, 3), 1.0}}));
   EXPECT_EQ(t.min_depth, 4);
   EXPECT_DOUBLE_EQ(t.root_side, 2.0);
   EXPECT_DOUBLE_EQ(t.rc, 1.0);
-  EXPECT_TRUE(t.axes.isIdentity());
+  EXPECT_TRUE(t.frame.axes.isIdentity());
   EXPECT_TRUE(t.to_local(Eigen::Vector3d(1, 2, 3)).isApprox(Eigen::Vector3d(1, 1, 1)));
   EXPECT_FALSE(t.hit_max_depth);
 }
@@ -48,13 +48,13 @@ TEST(Octree, PrincipalFrameIsRightHandedWithFixedSigns) {
   mg::MedialSurface s;
   mg_test::add_chain(s, Eigen::Vector3d(-2, -1, 0.5), Eigen::Vector3d(2, 1, -0.5), 9, 0.3);
   s.atoms.push_back({Eigen::Vector3d(0, 0.4, 0.3), 0.3});
-  const auto t = mg::build_octree(s);
-  EXPECT_NEAR(t.axes.determinant(), 1.0, 1e-12);
-  EXPECT_TRUE((t.axes.transpose() * t.axes).isIdentity(1e-12));
+  const auto t = mg_test::octree_of(s);
+  EXPECT_NEAR(t.frame.axes.determinant(), 1.0, 1e-12);
+  EXPECT_TRUE((t.frame.axes.transpose() * t.frame.axes).isIdentity(1e-12));
   Eigen::Index big;
-  t.axes.col(0).cwiseAbs().maxCoeff(&big);
-  EXPECT_GT(t.axes(big, 0), 0);
-  EXPECT_NEAR(std::abs(t.axes.col(0).dot(Eigen::Vector3d(4, 2, -1).normalized())), 1.0, 1e-3);
+  t.frame.axes.col(0).cwiseAbs().maxCoeff(&big);
+  EXPECT_GT(t.frame.axes(big, 0), 0);
+  EXPECT_NEAR(std::abs(t.frame.axes.col(0).dot(Eigen::Vector3d(4, 2, -1).normalized())), 1.0, 1e-3);
   // The root is the tightest cube around the balls in that frame: some ball touches each of
   // the two faces of the longest side.
   double lo = 1e9, hi = -1e9;
@@ -68,15 +68,15 @@ TEST(Octree, PrincipalFrameIsRightHandedWithFixedSigns) {
 }
 
 TEST(Octree, RepeatedEigenvaluesGiveTheIdentityFrame) {
-  EXPECT_TRUE(mg::build_octree(mg_test::ring(60, 1.0, 0.3)).axes.isIdentity());
-  EXPECT_TRUE(mg::build_octree(atoms({{Eigen::Vector3d(0, 0, 0), 1}, {Eigen::Vector3d(1, 1, 1), 1}}))
-                  .axes.isIdentity());
+  EXPECT_TRUE(mg_test::octree_of(mg_test::ring(60, 1.0, 0.3)).frame.axes.isIdentity());
+  EXPECT_TRUE(mg_test::octree_of(atoms({{Eigen::Vector3d(0, 0, 0), 1}, {Eigen::Vector3d(1, 1, 1), 1}}))
+                  .frame.axes.isIdentity());
 }
 
 TEST(Octree, MinDepthOverrideAndMaxDepthStop) {
-  mg::OctreeOptions opt;
+  mg::garbing::OctreeOptions opt;
   opt.min_depth = 6;
-  const auto t = mg::build_octree(atoms({{Eigen::Vector3d::Zero(), 1.0}}), opt);
+  const auto t = mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 1.0}}), opt);
   EXPECT_EQ(t.min_depth, 6);
   for (int c : active_leaves(t))
     if (!t.cells[c].inside_one_ball) {
@@ -87,10 +87,10 @@ TEST(Octree, MinDepthOverrideAndMaxDepthStop) {
   opt = {};
   opt.max_depth = 8;
   const auto gap = atoms({{Eigen::Vector3d(-1.005, 0, 0), 1}, {Eigen::Vector3d(1.005, 0, 0), 1}});
-  const auto stopped = mg::build_octree(gap, opt);
+  const auto stopped = mg_test::octree_of(gap, opt);
   EXPECT_TRUE(stopped.hit_max_depth);
   EXPECT_LE(stopped.depth, 8);
-  EXPECT_FALSE(mg::build_octree(gap).hit_max_depth);
+  EXPECT_FALSE(mg_test::octree_of(gap).hit_max_depth);
 }
 
 /// Brute-force geometry of a cone's solid, the union of the balls B(c(t), r(t)), c and r
@@ -116,14 +116,15 @@ struct SampledHull {
 
 /// Criteria 1, 3 and 4 hold at the fixed point, checked by brute force over the leaves
 /// touching each active leaf (touching_leaves is checked against all pairs separately).
-/// Primitives: sphere i is i, cone k of t.cone_pairs is n + k; a pair counts as meeting
+/// Primitives: sphere i is i, cone k of `pairs` (G's) is n + k; a pair counts as meeting
 /// when the sampled minimum is within the sampling tolerance (so the check never blames the
 /// octree for a meeting it may have seen).
-void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
+void expect_criteria_hold(const mg::MedialSurface& s, const mg::garbing::Octree& t,
+                          const std::vector<std::array<int, 2>>& pairs) {
   const auto active = active_leaves(t);
   const int n = static_cast<int>(s.atoms.size());
   std::vector<SampledHull> hulls;
-  for (const auto& pair : t.cone_pairs) hulls.emplace_back(s, pair);
+  for (const auto& pair : pairs) hulls.emplace_back(s, pair);
   auto meet = [&](int i, int j) {
     if (i == j) return true;
     if (i > j) std::swap(i, j);
@@ -132,7 +133,7 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
       const auto& b = s.atoms[j];
       return (a.centre - b.centre).norm() <= a.radius + b.radius;
     }
-    const auto& pj = t.cone_pairs[j - n];
+    const auto& pj = pairs[j - n];
     const SampledHull& hj = hulls[j - n];
     if (i < n) {
       if (i == pj[0] || i == pj[1]) return true;
@@ -140,7 +141,7 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
       return SampledHull::min_over_t([&](double u) { return (a.centre - hj.centre(u)).norm() - hj.radius(u); }) <=
              a.radius + hj.tolerance();
     }
-    const auto& pi = t.cone_pairs[i - n];
+    const auto& pi = pairs[i - n];
     if (pi[0] == pj[0] || pi[0] == pj[1] || pi[1] == pj[0] || pi[1] == pj[1]) return true;
     const SampledHull& hi = hulls[i - n];
     double best = INFINITY;
@@ -150,7 +151,7 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
                                   hj.radius(y / 200.0));
     return best <= 10 * (hi.tolerance() + hj.tolerance());
   };
-  auto primitives = [&](const mg::OctreeCell& c) {
+  auto primitives = [&](const mg::garbing::OctreeCell& c) {
     std::vector<int> out(c.spheres.begin(), c.spheres.end());
     for (int k : c.cones) out.push_back(n + k);
     return out;
@@ -159,7 +160,7 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
   for (std::size_t x = 0; x < active.size(); ++x) {
     const auto& a = t.cells[active[x]];
     const auto pa = primitives(a);
-    mg::touching_leaves(t, active[x], touching);
+    mg::garbing::touching_leaves(t, active[x], touching);
     for (int y : touching) {
       const auto& b = t.cells[y];
       if (!b.is_active()) continue;
@@ -192,31 +193,31 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::Octree& t) {
 
 TEST(Octree, CriteriaHoldAtTheFixedPointOnARandomBlob) {
   const auto s = mg_test::blob(40, 0.08, 0.3, 7);
-  const auto t = mg::build_octree(s);
+  const auto t = mg_test::octree_of(s);
   EXPECT_FALSE(t.hit_max_depth);
-  expect_criteria_hold(s, t);
+  expect_criteria_hold(s, t, mg::garbing::cone_pairs(s, {}));
 }
 
 TEST(Octree, CriteriaHoldWithEveryConeOfARandomBlob) {
   // No cone filter: many cones whose crease fill reaches leaves that no ball meets.
   const auto s = mg_test::blob(40, 0.08, 0.3, 7);
-  mg::OctreeOptions opt;
-  opt.cones.min_circle_ratio = 0;
-  opt.cones.max_collar = 0;
-  const auto t = mg::build_octree(s, opt);
+  mg::garbing::ConeOptions cones;
+  cones.min_circle_ratio = 0;
+  cones.max_collar = 0;
+  const auto t = mg_test::octree_of(s, {}, cones);
   EXPECT_FALSE(t.hit_max_depth);
   long crease_leaves = 0;
   for (int c : active_leaves(t)) crease_leaves += t.cells[c].spheres.empty();
   EXPECT_GT(crease_leaves, 0);
-  expect_criteria_hold(s, t);
+  expect_criteria_hold(s, t, mg::garbing::cone_pairs(s, cones));
 }
 
 TEST(Octree, CriteriaHoldOnTwoChainsPassingClose) {
   mg::MedialSurface s;
   mg_test::add_chain(s, Eigen::Vector3d(-1, 0, 0), Eigen::Vector3d(1, 0, 0), 21, 0.1);
   mg_test::add_chain(s, Eigen::Vector3d(0, -1, 0.21), Eigen::Vector3d(0, 1, 0.21), 21, 0.1);
-  const auto t = mg::build_octree(s);
-  expect_criteria_hold(s, t);
+  const auto t = mg_test::octree_of(s);
+  expect_criteria_hold(s, t, mg::garbing::cone_pairs(s, {}));
 }
 
 /// Cones(c) is exactly the cones whose solid meets the cube while neither ball does, checked
@@ -228,13 +229,15 @@ TEST_P(CreaseCones, AreTheConesMeetingTheCubeOutsideTheirBalls) {
   // crease where they meet is filled by their cone.
   const auto [x, y, z, r, depth] = GetParam();
   const auto s = atoms({{Eigen::Vector3d(0, 0, 0), 1.0}, {Eigen::Vector3d(x, y, z), r}});
-  mg::OctreeOptions opt;
+  mg::garbing::OctreeOptions opt;
   opt.min_depth = static_cast<int>(depth);
-  opt.cones.min_circle_ratio = 0;
-  opt.cones.max_collar = 0;
-  const auto t = mg::build_octree(s, opt);
-  ASSERT_EQ(t.cone_pairs.size(), 1u);
-  const SampledHull hull(s, t.cone_pairs[0]);
+  mg::garbing::ConeOptions cones;
+  cones.min_circle_ratio = 0;
+  cones.max_collar = 0;
+  const auto t = mg_test::octree_of(s, opt, cones);
+  const auto pairs = mg::garbing::cone_pairs(s, cones);
+  ASSERT_EQ(pairs.size(), 1u);
+  const SampledHull hull(s, pairs[0]);
   long listed = 0, checked = 0;
   for (int c : t.leaves) {
     const auto& cell = t.cells[c];
@@ -276,14 +279,14 @@ INSTANTIATE_TEST_SUITE_P(Octree, CreaseCones,
                                            std::array<double, 5>{0.3, 0.2, 1.7, 0.9, 5}));  // off-axis
 
 TEST(Octree, TouchingLeavesMatchesBruteForce) {
-  mg::OctreeOptions opt;
+  mg::garbing::OctreeOptions opt;
   opt.min_depth = 3;  // a small tree: the brute force is quadratic
-  const auto t = mg::build_octree(mg_test::blob(15, 0.1, 0.4, 3), opt);
+  const auto t = mg_test::octree_of(mg_test::blob(15, 0.1, 0.4, 3), opt);
   ASSERT_GT(t.depth, 4);  // several levels meet
   std::vector<int> fast;
   for (std::size_t x = 0; x < t.leaves.size(); x += 5) {
     const int c = t.leaves[x];
-    mg::touching_leaves(t, c, fast);
+    mg::garbing::touching_leaves(t, c, fast);
     std::vector<int> slow;
     for (int d : t.leaves)
       if (d != c && contact(t.cells[c], t.cells[d]) >= 0) slow.push_back(d);
@@ -295,11 +298,11 @@ TEST(Octree, TouchingLeavesMatchesBruteForce) {
 TEST(Octree, CubesTileWithoutGapsOrOverlaps) {
   // Neighbouring cubes share their face plane exactly, and every corner is the same double
   // as the lattice point (corner x side at the finest level): no point falls between leaves.
-  const auto t = mg::build_octree(mg_test::blob(15, 0.1, 0.4, 3));
+  const auto t = mg_test::octree_of(mg_test::blob(15, 0.1, 0.4, 3));
   const double unit = t.side(t.depth);
   std::size_t shared = 0;
   for (int c : t.leaves) {
-    const mg::OctreeCell& cell = t.cells[c];
+    const mg::garbing::OctreeCell& cell = t.cells[c];
     const Eigen::AlignedBox3d cube = t.cube(cell);
     const std::int64_t scale = std::int64_t(1) << (t.depth - cell.level);
     for (int a = 0; a < 3; ++a) {
@@ -308,9 +311,9 @@ TEST(Octree, CubesTileWithoutGapsOrOverlaps) {
       // The neighbour across the upper face, at the same level or coarser.
       std::array<std::int64_t, 3> ijk = {cell.ijk[0], cell.ijk[1], cell.ijk[2]};
       ++ijk[a];
-      const int n = mg::find_cell(t, cell.level, ijk);
+      const int n = mg::garbing::find_cell(t, cell.level, ijk);
       if (n < 0) continue;
-      const mg::OctreeCell& other = t.cells[n];
+      const mg::garbing::OctreeCell& other = t.cells[n];
       if (other.level > cell.level) continue;
       EXPECT_EQ(t.cube(other).min()[a], cube.max()[a]) << "leaf " << c << " axis " << a;
       ++shared;
@@ -320,20 +323,23 @@ TEST(Octree, CubesTileWithoutGapsOrOverlaps) {
 }
 
 TEST(Octree, RefusesBadInput) {
-  EXPECT_THROW(mg::build_octree(mg::MedialSurface{}), mg::InvalidInput);
-  EXPECT_THROW(mg::build_octree(atoms({{Eigen::Vector3d::Zero(), std::numeric_limits<double>::quiet_NaN()}})),
+  EXPECT_THROW(mg_test::octree_of(mg::MedialSurface{}), mg::InvalidInput);
+  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), std::numeric_limits<double>::quiet_NaN()}})),
                mg::InvalidInput);
-  EXPECT_THROW(mg::build_octree(atoms({{Eigen::Vector3d::Zero(), 0.0}})), mg::InvalidInput);
-  EXPECT_THROW(mg::build_octree(atoms({{Eigen::Vector3d::Zero(), -1.0}})), mg::InvalidInput);
-  mg::OctreeOptions opt;
+  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 0.0}})), mg::InvalidInput);
+  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), -1.0}})), mg::InvalidInput);
+  mg::garbing::OctreeOptions opt;
   opt.min_depth = 9;
   opt.max_depth = 8;
-  EXPECT_THROW(mg::build_octree(atoms({{Eigen::Vector3d::Zero(), 1.0}}), opt), mg::InvalidInput);
+  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 1.0}}), opt), mg::InvalidInput);
   // Automatic d above the stop: a tiny ball beside a huge one.
   opt = {};
   opt.max_depth = 5;
-  EXPECT_THROW(mg::build_octree(atoms({{Eigen::Vector3d::Zero(), 1.0}, {Eigen::Vector3d(1000, 0, 0), 0.001}}), opt),
+  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 1.0}, {Eigen::Vector3d(1000, 0, 0), 0.001}}), opt),
                mg::InvalidInput);
+  // G outside a bounding cube frame (world coordinates) has no root cube.
+  const auto one = atoms({{Eigen::Vector3d::Zero(), 1.0}});
+  EXPECT_THROW(mg::garbing::build_octree(mg::garbing::make_target_shape(one)), mg::InvalidInput);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #include "garbing/detail/polygon_triangulation.h"
-#include "garbing/errors.h"
-#include "garbing/mesh_topology.h"
+#include "core/errors.h"
+#include "core/mesh_topology.h"
+#include "garbing/garb.h"
 #include "garbing/refine_mesh.h"
-#include "garbing/triangle_defects.h"
+#include "core/triangle_defects.h"
 
 #include <gtest/gtest.h>
 #include <iostream>
@@ -15,10 +16,24 @@ namespace {
 using Eigen::Vector3d;
 using mg_test::atoms;
 
-mg::RefinedMesh garb(const mg::MedialSurface& s, const mg::RefineOptions& ropt = {},
-                     mg::OctreeOptions topt = {}) {
-  const mg::Octree tree = mg::build_octree(s, topt);
-  return mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s, ropt);
+mg::garbing::RefinedMesh garb(const mg::MedialSurface& s, const mg::garbing::RefineOptions& ropt = {},
+                               const mg::garbing::OctreeOptions& topt = {},
+                               const mg::garbing::ConeOptions& cones = {}) {
+  return mg::garbing::garb(s, {cones, topt, ropt}).m2;
+}
+
+/// Cones of every intersecting pair adjacent in the regular triangulation, however shallow.
+mg::garbing::ConeOptions every_cone() {
+  mg::garbing::ConeOptions cones;
+  cones.min_circle_ratio = 0;
+  cones.max_collar = 0;
+  return cones;
+}
+
+mg::garbing::ConeOptions no_cones() {
+  mg::garbing::ConeOptions cones;
+  cones.source = mg::garbing::ConeSource::none;
+  return cones;
 }
 
 std::vector<Vector3d> points(const mg::Mesh& m) {
@@ -52,14 +67,11 @@ TEST(RefineMesh, OneSphereReproducesThePapersRowOnTheSphere) {
 
 TEST(RefineMesh, TwoOverlappingSpheresLandExactlyOnG) {
   const auto s = atoms({{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.2, 0.3, -0.2), 0.7}});
-  mg::OctreeOptions opt;
-  opt.cones.min_circle_ratio = 0;  // circle radius 0.80 of the smaller ball: keep the cone
-  opt.cones.max_collar = 0;        // and its collar (2.4 rc / 8)
-  const auto pairs = mg::cone_pairs(s, opt.cones);
+  // Every cone: the circle radius is 0.80 of the smaller ball, the collar 2.4 rc / 8.
+  const auto pairs = mg::garbing::cone_pairs(s, every_cone());
   ASSERT_EQ(pairs.size(), 1u);
-  const mg::TargetShape shape(s, pairs);
-  const auto m2 = garb(s, {}, opt);
-  EXPECT_EQ(m2.stats.cones, 1u);
+  const mg::garbing::TargetShape shape(s, pairs);
+  const auto m2 = garb(s, {}, {}, every_cone());
   for (const Vector3d& p : points(m2.mesh)) {
     EXPECT_LT(shape.distance(p), 1e-9) << p.transpose();
     // Not strictly inside any primitive, beyond rounding.
@@ -77,26 +89,25 @@ TEST(RefineMesh, RingOfSpheresHasGenusOneAndNoFolds) {
 }
 
 /// A coarse octree keeps these meshes small (the automatic depth gives tens of thousands).
-mg::OctreeOptions coarse() {
-  mg::OctreeOptions opt;
+mg::garbing::OctreeOptions coarse() {
+  mg::garbing::OctreeOptions opt;
   opt.min_depth = 5;
   return opt;
 }
 
 TEST(RefineMesh, AblationsAndSubdivisionStayClosed) {
   const auto s = mg_test::blob(12, 0.2, 0.4, 3);
-  mg::RefineOptions opt;
-  mg::OctreeOptions spheres_only = coarse();
-  spheres_only.cones.source = mg::ConeSource::none;
-  expect_sound(garb(s, opt, spheres_only).mesh, "spheres only");
+  mg::garbing::RefineOptions opt;
+  expect_sound(garb(s, opt, coarse(), no_cones()).mesh, "spheres only");
   opt.subdivisions = 1;
-  const auto refined = garb(s, opt, spheres_only);
+  const auto refined = garb(s, opt, coarse(), no_cones());
   expect_sound(refined.mesh, "spheres only, refine 1");
   EXPECT_GT(refined.stats.vertices_migrated, refined.mesh.n_vertices() / 2);
   opt = {};
   opt.dual = false;
-  for (const auto& [what, topt] : {std::make_pair("no dual", coarse()), std::make_pair("no dual, spheres only", spheres_only)}) {
-    const auto no_dual = garb(s, opt, topt);
+  for (const auto& [what, cones] : {std::make_pair("no dual", mg::garbing::ConeOptions{}),
+                                    std::make_pair("no dual, spheres only", no_cones())}) {
+    const auto no_dual = garb(s, opt, coarse(), cones);
     const auto t = mg::mesh_topology(mg::soup_from_mesh(no_dual.mesh));
     EXPECT_TRUE(t.closed && t.oriented) << what << ": " << t.first_problem;
   }
@@ -108,7 +119,7 @@ TEST(RefineMesh, EveryVertexOfM1ItselfFindsItsPrimitives) {
   // primitives of an active leaf. (Measured before the fix: 7,839 and 19,494 vertices fell
   // back for want of a direction; after: 16 and 1, genuine zeros: a corner met by one cone
   // whose foot falls outside it, a gap split's midpoint in an inactive leaf.)
-  mg::RefineOptions opt;
+  mg::garbing::RefineOptions opt;
   opt.dual = false;
   for (const auto& [what, s] : {std::make_pair("ring", mg_test::ring(60, 1.0, 0.3)),
                                 std::make_pair("blob", mg_test::blob(12, 0.2, 0.4, 3))}) {
@@ -147,16 +158,13 @@ TEST(RefineMesh, LocalLineQueriesMatchTheQueriesOverAllPrimitives) {
   const std::vector<Case> cases = {{"dual", mg_test::blob(40, 0.1, 0.35, 7), true, 0},
                                    {"dual, subdivided", mg_test::blob(30, 0.05, 0.3, 3), true, 1},
                                    {"no dual", mg_test::blob(30, 0.05, 0.3, 3), false, 0}};
-  mg::OctreeOptions topt = coarse();
-  topt.cones.min_circle_ratio = 0;
-  topt.cones.max_collar = 0;
   for (const Case& c : cases) {
-    mg::RefineOptions local, global;
+    mg::garbing::RefineOptions local, global;
     local.dual = global.dual = c.dual;
     local.subdivisions = global.subdivisions = c.subdivisions;
     global.local_queries = false;
-    const auto a = mg::soup_from_mesh(garb(c.atoms, local, topt).mesh);
-    const auto b = mg::soup_from_mesh(garb(c.atoms, global, topt).mesh);
+    const auto a = mg::soup_from_mesh(garb(c.atoms, local, coarse(), every_cone()).mesh);
+    const auto b = mg::soup_from_mesh(garb(c.atoms, global, coarse(), every_cone()).mesh);
     ASSERT_GT(a.points.size(), 1000u) << c.what;
     EXPECT_EQ(a.faces, b.faces) << c.what;
     EXPECT_EQ(a.points, b.points) << c.what;
@@ -164,7 +172,7 @@ TEST(RefineMesh, LocalLineQueriesMatchTheQueriesOverAllPrimitives) {
 }
 
 /// Largest distance from G of the vertices, edge midpoints and centroids of a mesh.
-double farthest_sample(const mg::Mesh& m, const mg::TargetShape& shape) {
+double farthest_sample(const mg::Mesh& m, const mg::garbing::TargetShape& shape) {
   const auto soup = mg::soup_from_mesh(m);
   double worst = 0;
   for (const auto& f : soup.faces) {
@@ -180,18 +188,17 @@ double farthest_sample(const mg::Mesh& m, const mg::TargetShape& shape) {
 /// G (measured 0.126 with a leaf of 0.122); the split edges' vertices land in the groove.
 TEST(RefineMesh, GapSplittingFollowsASharpCrease) {
   const auto s = atoms({{Vector3d(0, 0, 0), 1.0}, {Vector3d(1.9, 0, 0), 1.0}});
-  mg::OctreeOptions topt;
-  topt.cones.source = mg::ConeSource::none;
-  const mg::Octree tree = mg::build_octree(s, topt);
-  const mg::CoarseMesh m1 = mg::extract_coarse_mesh(tree);
-  const mg::TargetShape shape(s, {});
+  const mg::garbing::TargetShape g = mg_test::shape_of(s, no_cones());
+  const mg::garbing::Octree tree = mg::garbing::build_octree(g);
+  const mg::garbing::CoarseMesh m1 = mg::garbing::extract_coarse_mesh(tree);
+  const mg::garbing::TargetShape shape(s, {});  // in world coordinates, as M2
   const double leaf = tree.side(tree.min_depth);
-  mg::RefineOptions off;
+  mg::garbing::RefineOptions off;
   off.max_gap = 0;
-  const auto bridged = mg::refine_mesh(m1, tree, s, off);
+  const auto bridged = mg::garbing::refine_mesh(m1, tree, g, off);
   EXPECT_EQ(bridged.stats.gap_splits, 0u);
   EXPECT_GT(farthest_sample(bridged.mesh, shape), leaf);
-  const auto split = mg::refine_mesh(m1, tree, s);
+  const auto split = mg::garbing::refine_mesh(m1, tree, g);
   EXPECT_GT(split.stats.gap_splits, 100u);
   EXPECT_EQ(split.mesh.n_vertices(), bridged.mesh.n_vertices() + split.stats.gap_splits);
   EXPECT_LT(farthest_sample(split.mesh, shape), 0.75 * leaf);
@@ -202,11 +209,11 @@ TEST(RefineMesh, GapSplittingFollowsASharpCrease) {
   mg::PolygonSoup one, two;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = mg::soup_from_mesh(mg::refine_mesh(m1, tree, s).mesh);
+    one = mg::soup_from_mesh(mg::garbing::refine_mesh(m1, tree, g).mesh);
   }
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = mg::soup_from_mesh(mg::refine_mesh(m1, tree, s).mesh);
+    two = mg::soup_from_mesh(mg::garbing::refine_mesh(m1, tree, g).mesh);
   }
   EXPECT_EQ(one.faces, two.faces);
   EXPECT_EQ(one.points, two.points);
@@ -216,11 +223,11 @@ TEST(DualFaceTriangulation, ShortestDiagonalsAndNoRepeatedEdge) {
   // A hexagon stretched along x: the least total diagonal length is a zigzag of the three
   // short chords across it, never a long chord along it.
   const std::vector<Vector3d> hexagon = {{0, 0, 0}, {1, -1, 0}, {3, -1, 0}, {4, 0, 0}, {3, 1, 0}, {1, 1, 0}};
-  mg::detail::EdgeSet edges(hexagon.size());
+  mg::garbing::detail::EdgeSet edges(hexagon.size());
   const std::vector<int> poly = {0, 1, 2, 3, 4, 5};
   for (int i = 0; i < 6; ++i) edges.insert(poly[i], poly[(i + 1) % 6]);
   std::vector<std::array<int, 3>> out;
-  ASSERT_TRUE(mg::detail::min_diagonal_triangulation(poly, hexagon, edges, out));
+  ASSERT_TRUE(mg::garbing::detail::min_diagonal_triangulation(poly, hexagon, edges, out));
   ASSERT_EQ(out.size(), 4u);
   double total = 0;
   int diagonals = 0;
@@ -237,15 +244,15 @@ TEST(DualFaceTriangulation, ShortestDiagonalsAndNoRepeatedEdge) {
   // Two quads sharing the vertex pair (0, 2): the first takes the short diagonal 0-2, so the
   // second must take its own long diagonal 1-3 instead of repeating 0-2.
   const std::vector<Vector3d> p = {{0, 0, 0}, {1, -3, 0}, {2, 0, 0}, {1, 3, 0}};
-  mg::detail::EdgeSet shared(p.size());
+  mg::garbing::detail::EdgeSet shared(p.size());
   const std::vector<int> first = {0, 1, 2, 3}, second = {0, 3, 2, 1};
   for (const auto* q : {&first, &second})
     for (int i = 0; i < 4; ++i) shared.insert((*q)[i], (*q)[(i + 1) % 4]);
   std::vector<std::array<int, 3>> tris;
-  ASSERT_TRUE(mg::detail::min_diagonal_triangulation(first, p, shared, tris));
+  ASSERT_TRUE(mg::garbing::detail::min_diagonal_triangulation(first, p, shared, tris));
   EXPECT_TRUE(shared.contains(0, 2));
   EXPECT_FALSE(shared.contains(1, 3));
-  ASSERT_TRUE(mg::detail::min_diagonal_triangulation(second, p, shared, tris));
+  ASSERT_TRUE(mg::garbing::detail::min_diagonal_triangulation(second, p, shared, tris));
   EXPECT_TRUE(shared.contains(1, 3));
   ASSERT_EQ(tris.size(), 4u);
   for (std::size_t t = 2; t < 4; ++t) {  // the second quad's triangles both hold 1 and 3
@@ -256,29 +263,33 @@ TEST(DualFaceTriangulation, ShortestDiagonalsAndNoRepeatedEdge) {
   // A third quad on the same four vertices has no diagonal left: refused, nothing changed.
   const std::vector<int> third = {0, 1, 2, 3};
   const std::size_t before = tris.size();
-  EXPECT_FALSE(mg::detail::min_diagonal_triangulation(third, p, shared, tris));
+  EXPECT_FALSE(mg::garbing::detail::min_diagonal_triangulation(third, p, shared, tris));
   EXPECT_EQ(tris.size(), before);
 }
 
 TEST(RefineMesh, RefusesBadOptions) {
   const auto s = atoms({{Vector3d::Zero(), 1.0}});
-  const mg::Octree tree = mg::build_octree(s);
-  const auto m1 = mg::extract_coarse_mesh(tree);
-  mg::RefineOptions opt;
+  const mg::garbing::TargetShape g = mg_test::shape_of(s);
+  const mg::garbing::Octree tree = mg::garbing::build_octree(g);
+  const auto m1 = mg::garbing::extract_coarse_mesh(tree);
+  mg::garbing::RefineOptions opt;
   opt.subdivisions = -1;
-  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
+  EXPECT_THROW(mg::garbing::refine_mesh(m1, tree, g, opt), mg::InvalidInput);
   opt = {};
   opt.max_travel = 0;
-  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
+  EXPECT_THROW(mg::garbing::refine_mesh(m1, tree, g, opt), mg::InvalidInput);
   opt = {};
   opt.max_gap = -1;
-  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
+  EXPECT_THROW(mg::garbing::refine_mesh(m1, tree, g, opt), mg::InvalidInput);
   opt = {};
   opt.gap_rounds = -1;
-  EXPECT_THROW(mg::refine_mesh(m1, tree, s, opt), mg::InvalidInput);
-  mg::OctreeOptions topt;
-  topt.cones.min_circle_ratio = 2;
-  EXPECT_THROW(mg::build_octree(s, topt), mg::InvalidInput);
+  EXPECT_THROW(mg::garbing::refine_mesh(m1, tree, g, opt), mg::InvalidInput);
+  // The tree must come from this G.
+  const mg::garbing::TargetShape other = mg_test::shape_of(atoms({{Vector3d(5, 0, 0), 2.0}}));
+  EXPECT_THROW(mg::garbing::refine_mesh(m1, tree, other), mg::InvalidInput);
+  mg::garbing::ConeOptions cones;
+  cones.min_circle_ratio = 2;
+  EXPECT_THROW(mg_test::shape_of(s, cones), mg::InvalidInput);
 }
 
 }  // namespace
@@ -291,19 +302,17 @@ namespace {
 /// this blob folded into thousands of intersecting pairs that the repair left off G.
 TEST(RefineMesh, DeepCreasesOfEveryConeLandOnG) {
   const auto s = mg_test::blob(30, 0.05, 0.3, 3);
-  mg::OctreeOptions topt = coarse();
-  topt.cones.min_circle_ratio = 0;
-  topt.cones.max_collar = 0;
-  const mg::Octree tree = mg::build_octree(s, topt);
+  const mg::garbing::TargetShape g = mg_test::shape_of(s, every_cone());
+  const mg::garbing::Octree tree = mg::garbing::build_octree(g, coarse());
   long crease_leaves = 0;
   for (int c : tree.leaves) crease_leaves += tree.cells[c].is_active() && tree.cells[c].spheres.empty();
   ASSERT_GT(crease_leaves, 100);
-  const auto m2 = mg::refine_mesh(mg::extract_coarse_mesh(tree), tree, s);
+  const auto m2 = mg::garbing::refine_mesh(mg::garbing::extract_coarse_mesh(tree), tree, g);
   expect_sound(m2.mesh, "blob, every cone");
   std::cout << "intersecting before repair " << m2.stats.intersecting_before << ", left off G "
             << m2.stats.left_off_g << ", crease leaves " << crease_leaves << "\n";
   EXPECT_EQ(m2.stats.left_off_g, 0u);
-  const mg::TargetShape shape(s, tree.cone_pairs);
+  const mg::garbing::TargetShape shape = mg::garbing::make_target_shape(s, every_cone());
   const double leaf = tree.side(tree.min_depth);
   double worst = 0;
   for (const Vector3d& p : points(m2.mesh)) worst = std::max(worst, shape.distance(p));

@@ -1,4 +1,4 @@
-#include "garbing/errors.h"
+#include "core/errors.h"
 #include "garbing/target_shape.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 
 namespace {
 
+namespace gb = mg::garbing;
 using Eigen::Vector3d;
 using mg_test::atoms;
 
@@ -18,58 +19,9 @@ using mg_test::atoms;
 const mg::MedialAtom kA{Vector3d(0, 0, 0), 1.0};
 const mg::MedialAtom kB{Vector3d(2, 0, 0), 0.5};
 
-TEST(MigrationVector, SphereIsRadiusOverDistanceAwayFromTheCentre) {
-  const mg::MedialAtom s{Vector3d(0, 0, 0), 2.0};
-  EXPECT_TRUE(mg::migration_vector(s, Vector3d(1, 0, 0)).isApprox(Vector3d(2, 0, 0), 1e-15));
-  EXPECT_TRUE(mg::migration_vector(s, Vector3d(0, 0, 4)).isApprox(Vector3d(0, 0, 0.5), 1e-15));
-  EXPECT_EQ(mg::migration_vector(s, Vector3d(0, 0, 0)), Vector3d::Zero());  // on the centre
-}
-
-TEST(MigrationVector, ConeMatchesHandComputedValues) {
-  const mg::Cone cone = mg::make_cone(kA, kB, 0, 1);
-  EXPECT_NEAR(cone.sin_phi, 0.25, 1e-15);
-  // v = (1, 1, 0): foot t* = 1 - tan(phi) = 0.7418011102528389, r(t*) = 1 - t* / 4.
-  EXPECT_TRUE(mg::migration_vector(cone, Vector3d(1, 1, 0))
-                  .isApprox(Vector3d(0.19717109, 0.76364036, 0), 1e-7));
-  EXPECT_TRUE(mg::migration_vector(cone, Vector3d(0.5, 0, -0.8))
-                  .isApprox(Vector3d(0.28037972, 0, -1.08590599), 1e-7));
-  // Feet outside [0, L], and a point on the axis: zero.
-  EXPECT_EQ(mg::migration_vector(cone, Vector3d(-1, 0.5, 0)), Vector3d::Zero());
-  EXPECT_EQ(mg::migration_vector(cone, Vector3d(3, 0.1, 0)), Vector3d::Zero());
-  EXPECT_EQ(mg::migration_vector(cone, Vector3d(1, 0, 0)), Vector3d::Zero());
-}
-
-TEST(MigrationVector, ConeVectorPointsAtTheTangentBall) {
-  // |m_g| = r / |v - p|: the point p + r (v - p) / |v - p| lies on the cone's lateral surface.
-  const mg::Cone cone = mg::make_cone(kA, kB, 0, 1);
-  const mg::TargetShape shape(atoms({kA, kB}), {{0, 1}});
-  for (const Vector3d& v : {Vector3d(1, 1, 0), Vector3d(0.7, -0.3, 2), Vector3d(1.5, 0.2, 0.1)}) {
-    const Vector3d m = mg::migration_vector(cone, v);
-    ASSERT_GT(m.norm(), 0);
-    const double x = v.dot(cone.u), rho = (v - x * cone.u).norm();
-    const Vector3d p = (x - rho * cone.sin_phi / cone.cos_phi) * cone.u;
-    const Vector3d on = p + (m / m.norm()) * (m.norm() * (v - p).norm());
-    EXPECT_LT(shape.distance(on), 1e-12);
-  }
-}
-
-TEST(HullDistance, MatchesHandComputedValues) {
-  const mg::Cone cone = mg::make_cone(kA, kB, 0, 1);
-  // Beside the first centre, 2 from the axis: the nearest point is on the first ball's cap.
-  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(0, 2, 0)), 1.0, 1e-15);
-  // (1, 2): over the lateral surface, (y - R(x)) cos(phi) with R(x) = (1 - x / 4) / cos(phi).
-  const double cos_phi = std::sqrt(1 - 0.0625);
-  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(1, 0, 2)), (2 - 0.75 / cos_phi) * cos_phi, 1e-14);
-  // Beyond the second centre on the axis: the second ball.
-  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(3, 0, 0)), 0.5, 1e-15);
-  // Inside: minus the depth in the deepest ball B(c(t), r(t)); on the axis at x = 0.5 it is
-  // the one centred there, t = 0.25, r = 1 - 0.25 / 2.
-  EXPECT_NEAR(mg::hull_distance(cone, Vector3d(0.5, 0, 0)), -0.875, 1e-15);
-}
-
 TEST(TargetShape, WithinIsTheDistanceToTheUnionAgainstATolerance) {
   const auto s = atoms({kA, kB});
-  const mg::TargetShape shape(s, {{0, 1}});
+  const gb::TargetShape shape(s, {{0, 1}});
   const double cos_phi = std::sqrt(1 - 0.0625);
   const double over_cone = (2 - 0.75 / cos_phi) * cos_phi;  // (1, 2, 0) to the lateral surface
   EXPECT_TRUE(shape.within(Vector3d(1, 2, 0), over_cone * (1 + 1e-9)));
@@ -78,7 +30,7 @@ TEST(TargetShape, WithinIsTheDistanceToTheUnionAgainstATolerance) {
   EXPECT_FALSE(shape.within(Vector3d(0, -1.5, 0), 0.5 - 1e-9));
   EXPECT_TRUE(shape.within(Vector3d(0.2, 0.1, 0), 0));            // inside
   // Between the balls (1.22 from both centres), under the lateral surface (R(1) = 0.775).
-  EXPECT_FALSE(mg::TargetShape(s, {}).within(Vector3d(1, 0.7, 0), 0.01));
+  EXPECT_FALSE(gb::TargetShape(s, {}).within(Vector3d(1, 0.7, 0), 0.01));
   EXPECT_TRUE(shape.within(Vector3d(1, 0.7, 0), 0));
 }
 
@@ -87,10 +39,10 @@ TEST(TargetShape, WithinIsTheDistanceToTheUnionAgainstATolerance) {
 /// toward negative t. Random lines through a blob of balls and their cones, some axis-parallel.
 TEST(TargetShape, LineToBoundaryMatchesAllIntervals) {
   const auto s = mg_test::blob(40, 0.1, 0.35, 5);
-  mg::ConeOptions every;
+  gb::ConeOptions every;
   every.min_circle_ratio = 0;
   every.max_collar = 0;
-  const mg::TargetShape shape(s, mg::cone_pairs(s, every));
+  const gb::TargetShape shape(s, gb::cone_pairs(s, every));
   ASSERT_GT(shape.cone_count(), 20u);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> box(-1.3, 1.3), unit(-1, 1);
@@ -142,7 +94,7 @@ TEST(TargetShape, LineToBoundaryMatchesAllIntervals) {
 }
 
 TEST(TargetShape, RaysThroughTheConeSolid) {
-  const mg::TargetShape cone_only(atoms({kA, kB}), {{0, 1}});
+  const gb::TargetShape cone_only(atoms({kA, kB}), {{0, 1}});
   // Remove the spheres' contribution by starting between them on a ray across the waist:
   // at x = 1 the cone's radius is (1 - 0.25) / cos(phi) = 0.7745966692414834.
   double t;
@@ -160,10 +112,10 @@ TEST(TargetShape, RaysThroughTheConeSolid) {
 }
 
 TEST(TargetShape, ContainsAndClosestPoint) {
-  const mg::TargetShape shape(atoms({kA, kB}), {{0, 1}});
+  const gb::TargetShape shape(atoms({kA, kB}), {{0, 1}});
   EXPECT_TRUE(shape.contains(Vector3d(1, 0.7, 0)));   // in the cone, outside both balls
   EXPECT_FALSE(shape.contains(Vector3d(1, 0.8, 0)));
-  const mg::TargetShape balls(atoms({kA, kB}), {});
+  const gb::TargetShape balls(atoms({kA, kB}), {});
   EXPECT_FALSE(balls.contains(Vector3d(1, 0.7, 0)));  // the waist without the cone
   // Outside: exact nearest point.
   EXPECT_TRUE(shape.closest_point(Vector3d(-3, 0, 0)).isApprox(Vector3d(-1, 0, 0), 1e-15));
@@ -183,11 +135,11 @@ TEST(ConePairs, SourcesAndFilter) {
                                {Vector3d(0.1, 0, 0), 0.2},
                                {Vector3d(10, 0, 0), 1}});
   s.edges = {{1, 0}, {2, 3}, {0, 4}};
-  mg::ConeOptions opt;
+  gb::ConeOptions opt;
   opt.min_circle_ratio = 0;
   opt.max_collar = 0;  // no collar limit here (see CollarLimitMatchesTheConeGeometry)
-  opt.source = mg::ConeSource::all_pairs;
-  const auto all = mg::cone_pairs(s, opt);
+  opt.source = gb::ConeSource::all_pairs;
+  const auto all = gb::cone_pairs(s, opt);
   // 0-1, 1-2, 2-3 and 0-2 (distance 3 > 2: no), 1-4 (contains? no: 1.4 < 1.2? no) ...
   for (const auto& p : all) {
     const auto& a = s.atoms[p[0]];
@@ -197,19 +149,19 @@ TEST(ConePairs, SourcesAndFilter) {
     EXPECT_GT(L, std::abs(a.radius - b.radius));
   }
   EXPECT_NE(std::find(all.begin(), all.end(), std::array<int, 2>{2, 3}), all.end());
-  opt.source = mg::ConeSource::ma_edges;
-  EXPECT_EQ(mg::cone_pairs(s, opt), (std::vector<std::array<int, 2>>{{0, 1}, {2, 3}}));
-  opt.source = mg::ConeSource::regular_triangulation;
-  const auto rt = mg::cone_pairs(s, opt);
+  opt.source = gb::ConeSource::ma_edges;
+  EXPECT_EQ(gb::cone_pairs(s, opt), (std::vector<std::array<int, 2>>{{0, 1}, {2, 3}}));
+  opt.source = gb::ConeSource::regular_triangulation;
+  const auto rt = gb::cone_pairs(s, opt);
   for (const auto& p : rt) EXPECT_NE(std::find(all.begin(), all.end(), p), all.end());
   // Balls 2 and 3 barely intersect (circle radius 0.31 r), balls 0 and 1 well (0.66 r): a 0.5
   // filter drops the first cone only.
-  opt.source = mg::ConeSource::all_pairs;
+  opt.source = gb::ConeSource::all_pairs;
   opt.min_circle_ratio = 0.5;
-  const auto kept = mg::cone_pairs(s, opt);
+  const auto kept = gb::cone_pairs(s, opt);
   EXPECT_EQ(std::find(kept.begin(), kept.end(), std::array<int, 2>{2, 3}), kept.end());
   EXPECT_NE(std::find(kept.begin(), kept.end(), std::array<int, 2>{0, 1}), kept.end());
-  EXPECT_THROW(mg::parse_cone_source("some"), mg::InvalidInput);
+  EXPECT_THROW(gb::parse_cone_source("some"), mg::InvalidInput);
 }
 
 TEST(ConePairs, RegularTriangulationEdgesOfATallBipyramid) {
@@ -222,19 +174,19 @@ TEST(ConePairs, RegularTriangulationEdgesOfATallBipyramid) {
                                      {Vector3d(-0.5, -c, 0), 2.5},
                                      {Vector3d(0, 0, 2), 2.5},
                                      {Vector3d(0, 0, -2), 2.5}});
-  mg::ConeOptions opt;
+  gb::ConeOptions opt;
   opt.min_circle_ratio = 0;
   opt.max_collar = 0;
-  opt.source = mg::ConeSource::all_pairs;
-  EXPECT_EQ(mg::cone_pairs(s, opt).size(), 10u);
-  opt.source = mg::ConeSource::regular_triangulation;
-  EXPECT_EQ(mg::cone_pairs(s, opt), (std::vector<std::array<int, 2>>{
+  opt.source = gb::ConeSource::all_pairs;
+  EXPECT_EQ(gb::cone_pairs(s, opt).size(), 10u);
+  opt.source = gb::ConeSource::regular_triangulation;
+  EXPECT_EQ(gb::cone_pairs(s, opt), (std::vector<std::array<int, 2>>{
                                         {0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
   // Flattened (apexes at z = +-0.3), the apexes' edge crosses the triangle: all 10 pairs.
   mg::MedialSurface flat = s;
   flat.atoms[3].centre.z() = 0.3;
   flat.atoms[4].centre.z() = -0.3;
-  EXPECT_EQ(mg::cone_pairs(flat, opt).size(), 10u);
+  EXPECT_EQ(gb::cone_pairs(flat, opt).size(), 10u);
 }
 
 TEST(ConePairs, CollarLimitMatchesTheConeGeometry) {
@@ -242,27 +194,27 @@ TEST(ConePairs, CollarLimitMatchesTheConeGeometry) {
   // filter). The collar, measured on the cone itself: the distance from a point of the circle
   // where the spheres meet to the lateral surface, (R(x) - h) cos(phi).
   const mg::MedialAtom a{Vector3d(0, 0, 0), 1.0}, b{Vector3d(0.9, 0, 0), 0.6};
-  const mg::Cone cone = mg::make_cone(a, b, 0, 1);
+  const gb::Cone cone = gb::make_cone(a, b, 0, 1);
   const double L = 0.9, x = (L * L + 1 - 0.36) / (2 * L), h = std::sqrt(1 - x * x);
   const double collar = ((cone.r1 - x * cone.sin_phi) / cone.cos_phi - h) * cone.cos_phi;
   ASSERT_GT(collar, 0.01);
   // The collar must lie on the lateral surface's inner side: the crease point is inside the cone.
   const mg::MedialSurface s = atoms({a, b});
-  mg::TargetShape shape(s, {{0, 1}});
+  gb::TargetShape shape(s, {{0, 1}});
   EXPECT_TRUE(shape.primitive_contains(1 + 1, Vector3d(x, h, 0), 0.5 * collar));  // cone id 2
   EXPECT_FALSE(shape.primitive_contains(1 + 1, Vector3d(x, h, 0), 1.5 * collar));
   const double unit = (1.0 + 0.6) / 2 / 8;  // rc / 8
-  mg::ConeOptions opt;
-  opt.source = mg::ConeSource::all_pairs;
+  gb::ConeOptions opt;
+  opt.source = gb::ConeSource::all_pairs;
   opt.max_collar = collar / unit * (1 + 1e-9);
-  EXPECT_EQ(mg::cone_pairs(s, opt).size(), 1u);
+  EXPECT_EQ(gb::cone_pairs(s, opt).size(), 1u);
   opt.max_collar = collar / unit * (1 - 1e-9);
-  EXPECT_TRUE(mg::cone_pairs(s, opt).empty());
+  EXPECT_TRUE(gb::cone_pairs(s, opt).empty());
   opt.max_collar = 0;  // no limit
-  EXPECT_EQ(mg::cone_pairs(s, opt).size(), 1u);
+  EXPECT_EQ(gb::cone_pairs(s, opt).size(), 1u);
   opt.max_collar = -1;
-  EXPECT_THROW(mg::cone_pairs(s, opt), mg::InvalidInput);
-  EXPECT_EQ(mg::ConeOptions{}.max_collar, 1.0);  // the default the cone study chose
+  EXPECT_THROW(gb::cone_pairs(s, opt), mg::InvalidInput);
+  EXPECT_EQ(gb::ConeOptions{}.max_collar, 1.0);  // the default the cone study chose
 }
 
 }  // namespace

@@ -2,8 +2,9 @@
 //   render INPUT... -o OUTPUT.png [--pov SCENE.pov] [--width W] [--height H] [--view VIEW.json]
 //          [--direction X Y Z] [--fov DEG] [--flat] [--crease DEG] [--normals angle|area]
 //          [--transmit T] [--antialias T] [--threads N] [--povray EXE]
-#include "garbing/atomic_file.h"
-#include "garbing/cli_main.h"
+#include "core/atomic_file.h"
+#include "core/cli_main.h"
+#include "core/mesh_io.h"
 #include "render/povray_scene.h"
 #include "render/run_povray.h"
 #include "render/view.h"
@@ -16,11 +17,6 @@ namespace {
 
 void write_text(const std::string& text, const std::string& path) {
   mg::write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
-bool ends_with_png(std::string path) {
-  for (auto& c : path) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return path.size() > 4 && path.compare(path.size() - 4, 4, ".png") == 0;
 }
 
 int render_main(int argc, char** argv) {
@@ -70,7 +66,7 @@ int render_main(int argc, char** argv) {
 
   if (output.empty() && pov_path.empty())
     throw mg::InvalidInput("nothing to write: give -o OUTPUT.png and/or --pov SCENE.pov");
-  if (!output.empty() && !ends_with_png(output))
+  if (!output.empty() && mg::file_extension(output) != ".png")
     throw mg::InvalidInput(output + ": the output image must be a .png file");
   std::vector<std::string> protected_paths = inputs;
   if (!view_path.empty()) protected_paths.push_back(view_path);

@@ -1,7 +1,7 @@
 #include "render/povray_scene.h"
 
-#include "garbing/errors.h"
-#include "garbing/mesh_io.h"
+#include "core/errors.h"
+#include "core/mesh_io.h"
 
 #include <algorithm>
 #include <array>
@@ -11,13 +11,6 @@
 
 namespace mg::render {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 /// Appends numbers locale-independently: exact (shortest round trip) or with a few digits.
 class Text {
@@ -95,15 +88,13 @@ const std::array<Eigen::Vector3d, 4> kMeshPalette = {
 void write_mesh(Text& out, const PolygonSoup& soup, const std::string& name, int rank,
                 const SceneOptions& opt) {
   if (soup.faces.empty()) throw InvalidInput(name + ": mesh has no face");
+  validate_soup(soup, name);
   ShadingNormals normals;
   try {
     normals = shading_normals(soup, opt.normals);
   } catch (const InvalidInput& e) {
     throw InvalidInput(name + ": " + e.what());
   }
-  for (std::size_t v = 0; v < soup.points.size(); ++v)
-    if (!soup.points[v].allFinite())
-      throw InvalidInput(name + ": vertex " + std::to_string(v) + " is not finite");
 
   // Fan triangles of every face, with their corner normals; triangles of zero area are left
   // out (POV-Ray drops them with a warning anyway).
@@ -111,16 +102,14 @@ void write_mesh(Text& out, const PolygonSoup& soup, const std::string& name, int
     std::array<int, 3> v, n;
   };
   std::vector<Triangle> triangles;
-  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
-    const auto& face = soup.faces[f];
-    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
-      const Eigen::Vector3d& a = soup.points[face[0]];
-      if ((soup.points[face[i]] - a).cross(soup.points[face[i + 1]] - a).squaredNorm() == 0)
-        continue;
-      triangles.push_back(
-          {{face[0], face[i], face[i + 1]},
-           {normals.corners[f][0], normals.corners[f][i], normals.corners[f][i + 1]}});
-    }
+  const Triangles fan = fan_triangles(soup);
+  for (std::size_t k = 0; k < fan.corners.size(); ++k) {
+    const auto& t = fan.corners[k];
+    const Eigen::Vector3d& a = soup.points[t[0]];
+    if ((soup.points[t[1]] - a).cross(soup.points[t[2]] - a).squaredNorm() == 0) continue;
+    const auto& c = normals.corners[fan.face[k]];
+    const int i = fan.fan[k];
+    triangles.push_back({t, {c[0], c[i], c[i + 1]}});
   }
   if (triangles.empty()) throw InvalidInput(name + ": every face of the mesh has zero area");
 
@@ -202,7 +191,7 @@ void write_medial_surface(Text& out, const MedialSurface& s, const std::string& 
 }  // namespace
 
 bool has_medial_extension(const std::string& path) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = file_extension(path);
   return ext == ".ma" || ext == ".xyzr";
 }
 

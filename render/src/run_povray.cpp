@@ -1,7 +1,7 @@
 #include "render/run_povray.h"
 
-#include "garbing/atomic_file.h"
-#include "garbing/errors.h"
+#include "core/atomic_file.h"
+#include "core/errors.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,7 +1,7 @@
 #include "render/view.h"
 
-#include "garbing/atomic_file.h"
-#include "garbing/errors.h"
+#include "core/atomic_file.h"
+#include "core/errors.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,13 +1,13 @@
 #include "render/povray_scene.h"
 
-#include "garbing/errors.h"
-#include "garbing/shapes.h"
+#include "core/errors.h"
+#include "core/shapes.h"
 
 #include <gtest/gtest.h>
 
 #include <regex>
 
-#include "../../garbing/tests/test_util.h"
+#include "test_util.h"
 
 namespace {
 

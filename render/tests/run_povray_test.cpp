@@ -1,12 +1,12 @@
 #include "render/run_povray.h"
 
-#include "garbing/errors.h"
+#include "core/errors.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "../../garbing/tests/test_util.h"
+#include "test_util.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 #include "render/vertex_normals.h"
 
-#include "garbing/errors.h"
-#include "garbing/shapes.h"
+#include "core/errors.h"
+#include "core/shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -79,7 +79,7 @@ TEST(ShadingNormals, CreaseAngleKeepsBoxEdgesSharp) {
   EXPECT_FALSE(n.per_vertex);
   ASSERT_EQ(n.corners.size(), soup.faces.size());
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
-    const Eigen::Vector3d face = mg::render::face_normal(soup, static_cast<int>(f));
+    const Eigen::Vector3d face = mg::face_normal(soup, static_cast<int>(f));
     for (int c : n.corners[f]) EXPECT_LT((n.normals[c] - face).norm(), 1e-12) << "face " << f;
   }
   // 8 vertex normals + one normal per (corner, face direction): 8 corners x 3 directions.
@@ -101,7 +101,7 @@ TEST(ShadingNormals, NonManifoldAndDegenerateSoupsGetUnitNormals) {
   EXPECT_FALSE(n.per_vertex);  // the cancelled vertices fall back to face normals
   EXPECT_LT((n.normals[n.corners[3][0]] - Eigen::Vector3d(0, 0, 1)).norm(), 1e-12);
   EXPECT_LT((n.normals[n.corners[4][0]] - Eigen::Vector3d(0, 0, -1)).norm(), 1e-12);
-  EXPECT_EQ(mg::render::face_normal(soup, 5), Eigen::Vector3d::Zero());
+  EXPECT_EQ(mg::face_normal(soup, 5), Eigen::Vector3d::Zero());
 }
 
 TEST(ShadingNormals, Preconditions) {

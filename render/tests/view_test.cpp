@@ -1,6 +1,6 @@
 #include "render/view.h"
 
-#include "garbing/errors.h"
+#include "core/errors.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "../../garbing/tests/test_util.h"
+#include "test_util.h"
 
 namespace {
 

@@ -4,13 +4,13 @@
 // vertices as samples; vertices plus random face points up to 100,000 samples (the issue's
 // target: under 3 s on 2 cores); each at 1 and 2 threads (same run: compare the ratio). Then
 // union_topology of the vertex skeleton's atoms.
-#include "garbing/errors.h"
-#include "garbing/mesh_io.h"
-#include "garbing/shapes.h"
+#include "core/errors.h"
+#include "core/mesh_io.h"
+#include "core/shapes.h"
 #include "skeletonize/poles.h"
 #include "skeletonize/union_topology.h"
 
-#include <benchmark/benchmark.h>
+#include "bench_main.h"
 #include <tbb/global_control.h>
 
 #include <cstring>
@@ -64,24 +64,7 @@ BENCHMARK(union_topology)->Unit(benchmark::kMillisecond)->UseRealTime();
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string path;
-  std::vector<char*> rest = {argv[0]};
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--mesh") == 0 && i + 1 < argc)
-      path = argv[++i];
-    else
-      rest.push_back(argv[i]);
-  }
-  try {
-    g_mesh = path.empty() ? mg::make_bumpy_torus(126, 126, 1.0, 0.35, 0.1, 12, 6)
-                          : mg::read_polygon_soup(path);
-  } catch (const mg::Error& e) {
-    std::cerr << "skeletonize_bench: " << e.what() << '\n';
-    return 2;
-  }
-  int n = static_cast<int>(rest.size());
-  benchmark::Initialize(&n, rest.data());
-  if (benchmark::ReportUnrecognizedArguments(n, rest.data())) return 2;
-  benchmark::RunSpecifiedBenchmarks();
-  return 0;
+  return mg::bench::run_benchmarks(argc, argv, "skeletonize_bench", "--mesh", [](const std::string& path) {
+    g_mesh = path.empty() ? mg::make_bumpy_torus(126, 126, 1.0, 0.35, 0.1, 12, 6) : mg::read_polygon_soup(path);
+  });
 }

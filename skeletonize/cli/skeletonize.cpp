@@ -2,10 +2,10 @@
 //   skeletonize INPUT_MESH -o OUTPUT.ma [--samples vertices|midpoints|N] [--seed S]
 //               [--merge-tol T] [--clamp-radius] [--drop-isolated F] [--connectivity]
 //               [--stats FILE.json] [--threads N]
-#include "garbing/atomic_file.h"
-#include "garbing/cli_main.h"
-#include "garbing/mesh_io.h"
-#include "garbing/mesh_topology.h"
+#include "core/atomic_file.h"
+#include "core/cli_main.h"
+#include "core/mesh_io.h"
+#include "core/mesh_topology.h"
 #include "skeletonize/poles.h"
 #include "skeletonize/union_topology.h"
 

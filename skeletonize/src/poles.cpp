@@ -2,8 +2,10 @@
 // Delaunay triangulation, circumcentres, inside tests and distances.
 #include "skeletonize/poles.h"
 
-#include "garbing/errors.h"
-#include "garbing/mesh_topology.h"
+#include "core/errors.h"
+#include "core/random.h"
+#include "core/timer.h"
+#include "core/mesh_topology.h"
 #include "skeletonize/union_topology.h"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -22,7 +24,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -46,37 +47,16 @@ using SurfaceMesh = CGAL::Surface_mesh<Point>;
 using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 using Inside = CGAL::Side_of_triangle_mesh<SurfaceMesh, K, CGAL::Default, Tree>;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 Point to_point(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
 
-/// splitmix64: sample k of the random stream depends only on (seed, k).
+/// Draw k of the random samples' stream: depends only on (seed, k).
 double uniform(std::uint64_t seed, std::uint64_t k) {
-  std::uint64_t x = seed * 0x9e3779b97f4a7c15ULL + k + 0x632be59bd9b4e019ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  x ^= x >> 31;
-  return static_cast<double>(x >> 11) * 0x1.0p-53;
+  return unit_interval(mix64(seed * kSplitmixIncrement + k + 0x632be59bd9b4e019ULL));
 }
 
 void check_mesh(const PolygonSoup& mesh, const std::string& name) {
   if (mesh.faces.empty()) throw InvalidInput(name + ": empty mesh (no faces)");
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    if (!mesh.points[i].allFinite())
-      throw InvalidInput(name + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
-  const int n = static_cast<int>(mesh.points.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (mesh.faces[f].size() < 3)
-      throw InvalidInput(name + ": face " + std::to_string(f) + " has fewer than 3 vertices");
-    for (int v : mesh.faces[f])
-      if (v < 0 || v >= n)
-        throw InvalidInput(name + ": face " + std::to_string(f) + ": vertex index " +
-                           std::to_string(v) + " out of range");
-  }
+  validate_soup(mesh, name);
   const MeshTopology t = mesh_topology(mesh);
   if (!t.manifold) throw InvalidInput(name + ": non-manifold mesh: " + t.first_problem);
   if (!t.closed)
@@ -91,8 +71,7 @@ SurfaceMesh triangle_mesh(const PolygonSoup& soup) {
   std::vector<SurfaceMesh::Vertex_index> v;
   v.reserve(soup.points.size());
   for (const auto& p : soup.points) v.push_back(sm.add_vertex(to_point(p)));
-  for (const auto& f : soup.faces)
-    for (std::size_t i = 1; i + 1 < f.size(); ++i) sm.add_face(v[f[0]], v[f[i]], v[f[i + 1]]);
+  for (const auto& t : fan_triangles(soup).corners) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
   return sm;
 }
 
@@ -113,18 +92,13 @@ std::vector<Vec3> make_samples(const PolygonSoup& mesh, const SkeletonOptions& o
     for (const auto& [a, b] : edges) samples.push_back((mesh.points[a] + mesh.points[b]) / 2);
   }
   if (opt.random_samples > 0) {
-    std::vector<std::array<int, 3>> tris;
+    const std::vector<std::array<int, 3>> tris = fan_triangles(mesh).corners;
     std::vector<double> cumulative;
     double total = 0;
-    for (const auto& f : mesh.faces)
-      for (std::size_t i = 1; i + 1 < f.size(); ++i) {
-        tris.push_back({f[0], f[i], f[i + 1]});
-        total += (mesh.points[f[i]] - mesh.points[f[0]])
-                     .cross(mesh.points[f[i + 1]] - mesh.points[f[0]])
-                     .norm() /
-                 2;
-        cumulative.push_back(total);
-      }
+    for (const auto& t : tris) {
+      total += (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]).norm() / 2;
+      cumulative.push_back(total);
+    }
     for (std::size_t k = 0; k < opt.random_samples; ++k) {
       const double pick = uniform(opt.seed, 3 * k) * total;
       const std::size_t t = std::min<std::size_t>(
@@ -355,7 +329,7 @@ class Skeletonizer {
       : mesh_(mesh), opt_(opt), name_(name) {}
 
   Skeleton run() {
-    auto t = Clock::now();
+    Stopwatch t;
     check_mesh(mesh_, name_);
     if (!std::isfinite(opt_.merge_tol)) throw InvalidInput("merge tolerance must be finite");
     if (!(opt_.isolated_fraction >= 0 && std::isfinite(opt_.isolated_fraction)))
@@ -367,24 +341,19 @@ class Skeletonizer {
     out_.stats.samples = out_.samples.size();
     deduplicate();
     solid_ = std::make_unique<SolidQuery>(mesh_);
-    out_.stats.seconds_setup = seconds_since(t);
+    out_.stats.seconds_setup = t.restart();
 
-    t = Clock::now();
     triangulate();
-    out_.stats.seconds_delaunay = seconds_since(t);
-    t = Clock::now();
+    out_.stats.seconds_delaunay = t.restart();
     find_poles();
-    out_.stats.seconds_poles = seconds_since(t);
-    t = Clock::now();
+    out_.stats.seconds_poles = t.restart();
     merge_poles();
     prune_contained();
-    out_.stats.seconds_merge = seconds_since(t);
-    t = Clock::now();
+    out_.stats.seconds_merge = t.restart();
     distances_and_clamping();
-    out_.stats.seconds_distances = seconds_since(t);
-    t = Clock::now();
+    out_.stats.seconds_distances = t.restart();
     if (opt_.connectivity) add_connectivity();
-    out_.stats.seconds_connectivity = seconds_since(t);
+    out_.stats.seconds_connectivity = t.restart();
     finish();
     return std::move(out_);
   }

@@ -2,8 +2,9 @@
 // translation unit of mg::skeletonize for weighted triangulations.
 #include "skeletonize/union_topology.h"
 
-#include "garbing/detail/cgal_conversions.h"
-#include "garbing/errors.h"
+#include "core/detail/cgal_conversions.h"
+#include "core/errors.h"
+#include "core/union_find.h"
 
 #include <CGAL/Alpha_shape_2.h>
 #include <CGAL/Alpha_shape_face_base_2.h>
@@ -39,19 +40,6 @@ using Fb2 = CGAL::Alpha_shape_face_base_2<K, CGAL::Regular_triangulation_face_ba
 using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
 using Regular2 = CGAL::Regular_triangulation_2<K, Tds2>;
 using Alpha2 = CGAL::Alpha_shape_2<Regular2>;
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 Regular3 regular_triangulation(const MedialSurface& atoms) {
   std::vector<std::pair<Regular3::Weighted_point, int>> points;

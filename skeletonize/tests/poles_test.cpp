@@ -1,7 +1,7 @@
 // Inner poles on generated shapes: analytic atoms, options, determinism, refusals.
 #include "skeletonize/poles.h"
-#include "garbing/errors.h"
-#include "garbing/shapes.h"
+#include "core/errors.h"
+#include "core/shapes.h"
 #include "skeletonize/union_topology.h"
 
 #include <gtest/gtest.h>
@@ -197,7 +197,7 @@ TEST(Skeletonize, RefusesOpenNonManifoldEmptyFlatAndBrokenMeshes) {
   EXPECT_EQ(refusal(nan), "m.off: vertex 3 has a non-finite coordinate");
   mg::PolygonSoup range = mg::make_box(Vector3d::Zero(), Vector3d::Ones());
   range.faces[2][1] = 8;
-  EXPECT_EQ(refusal(range), "m.off: face 2: vertex index 8 out of range");
+  EXPECT_EQ(refusal(range), "m.off: face 2: vertex index 8 out of range [0, 8)");
   mg::PolygonSoup inverted = mg::make_box(Vector3d::Zero(), Vector3d::Ones());
   std::reverse(inverted.faces[0].begin(), inverted.faces[0].end());
   EXPECT_EQ(refusal(inverted).rfind("m.off: ", 0), 0u);

@@ -1,7 +1,7 @@
 // The skeletons of every reference model in experiments/models.json (materialised by the
 // reference_models fixture), at the sampling models.json documents for each.
-#include "garbing/mesh_io.h"
-#include "garbing/mesh_topology.h"
+#include "core/mesh_io.h"
+#include "core/mesh_topology.h"
 #include "skeletonize/poles.h"
 #include "skeletonize/union_topology.h"
 

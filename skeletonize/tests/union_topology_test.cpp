@@ -1,7 +1,8 @@
 // The topology of a union of balls: analytic cases, hidden balls, and random sets against an
 // independent voxel count.
 #include "skeletonize/union_topology.h"
-#include "garbing/errors.h"
+#include "core/errors.h"
+#include "core/random.h"
 
 #include <gtest/gtest.h>
 
@@ -131,10 +132,8 @@ TEST(UnionTopology, LinkedRingsShellsAndChains) {
 }
 
 double uniform(std::uint64_t& state) {  // splitmix64: the same stream on every platform
-  std::uint64_t x = (state += 0x9e3779b97f4a7c15ULL);
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return static_cast<double>((x ^ (x >> 31)) >> 11) * 0x1.0p-53;
+  state += mg::kSplitmixIncrement;
+  return mg::unit_interval(mg::mix64(state));
 }
 
 TEST(UnionTopology, RandomLatticeUnionsMatchTheirGraphs) {

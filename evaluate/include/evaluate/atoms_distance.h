@@ -5,13 +5,13 @@
 /// apart from the atoms' own error (the distance from G to the original object).
 
 #include "evaluate/distances.h"
-#include "garbing/medial_surface.h"
+#include "core/medial_surface.h"
 #include "garbing/target_shape.h"
 
 namespace mg::evaluate {
 
 struct AtomsDistanceOptions {
-  ConeOptions cones;        ///< which cones join the spheres in G (as `garb --cones`)
+  garbing::ConeOptions cones;  ///< which cones join the spheres in G (as `garb --cones`)
   std::size_t samples = 0;  ///< per side; 0 = max(1e5, 10 V_mesh)
   std::uint64_t seed = 1;
 };

@@ -4,8 +4,8 @@
 /// surface and the union of balls. Each returns the mesh; time it with time_stage() (timing.h)
 /// to get the algorithm's own wall time without file input/output.
 
-#include "garbing/medial_surface.h"
-#include "garbing/mesh.h"
+#include "core/medial_surface.h"
+#include "core/mesh.h"
 
 namespace mg::evaluate {
 

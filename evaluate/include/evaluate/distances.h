@@ -12,7 +12,7 @@
 /// boundaries do not depend on the thread count, and the sums are taken serially in sample
 /// order: the same input gives bit-identical results at any thread count.
 
-#include "garbing/mesh.h"
+#include "core/mesh.h"
 
 #include <Eigen/Core>
 
@@ -83,15 +83,6 @@ TwoSidedDistance two_sided_distance(const SurfaceSamples& on_a, const DistanceOr
 /// 100 * value / diagonal: a length in percent of a bounding-box diagonal.
 /// @pre diagonal > 0   @throws InvalidInput
 double percent_of_diagonal(double value, double diagonal);
-
-/// The triangles of a polygon soup: each polygon fanned from its first corner.
-struct Triangles {
-  std::vector<std::array<int, 3>> corners;  ///< indices into the soup's points
-  std::vector<std::size_t> face;            ///< the soup face each triangle comes from
-};
-
-/// Fans every face of the soup (triangles are kept as they are, in order).
-Triangles fan_triangles(const PolygonSoup& soup);
 
 /// How to sample a mesh surface.
 struct SamplingOptions {

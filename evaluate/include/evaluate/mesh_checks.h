@@ -4,7 +4,7 @@
 /// of mg::mesh_topology plus the geometric checks: intersecting triangle pairs, degenerate
 /// triangles (counted apart), the minimum angle and the valence histogram.
 
-#include "garbing/mesh_topology.h"
+#include "core/mesh_topology.h"
 
 #include <cstddef>
 #include <map>

@@ -4,7 +4,7 @@
 /// away from the reference surface's normal at the closest point. This measures the "bumps"
 /// of a union of balls (the paper's Figure 3) that a distance barely sees.
 
-#include "garbing/mesh.h"
+#include "core/mesh.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -6,8 +6,8 @@
 /// inward). Plus the voxel searches that match a vertex count or a Hausdorff distance.
 
 #include "evaluate/mesh_distance.h"
-#include "garbing/medial_surface.h"
-#include "garbing/mesh.h"
+#include "core/medial_surface.h"
+#include "core/mesh.h"
 
 #include <cstddef>
 #include <vector>

@@ -1,16 +1,16 @@
 #pragma once
 /// \file coarse_mesh.h
 /// Step 2 of the garbing: the coarse mesh M1, the boundary of the active leaves of the octree
-/// (paper section 3.2, ALGORITHM.md "Step 2").
+/// (paper section 3.2, docs/algorithm.md "Step 2").
 
-#include "garbing/mesh.h"
+#include "core/mesh.h"
 #include "garbing/octree.h"
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
-namespace mg {
+namespace mg::garbing {
 
 /// One face of M1: an axis-aligned square of the octree lattice.
 struct CoarseFace {
@@ -44,4 +44,4 @@ struct CoarseMesh {
 /// @throws TopologyError if the result is not a closed oriented 2-manifold (an internal defect)
 CoarseMesh extract_coarse_mesh(const Octree& tree);
 
-}  // namespace mg
+}  // namespace mg::garbing

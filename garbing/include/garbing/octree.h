@@ -1,9 +1,8 @@
 #pragma once
 /// \file octree.h
-/// Step 1 of the garbing: the adaptive octree T over the atoms' spheres (paper section 3.1,
-/// ALGORITHM.md "Step 1"), driven by four subdivision criteria iterated to a fixed point.
+/// Step 1 of the garbing: the adaptive octree T wrapping G (paper section 3.1,
+/// docs/algorithm.md "Step 1"), driven by four subdivision criteria iterated to a fixed point.
 
-#include "garbing/medial_surface.h"
 #include "garbing/target_shape.h"
 
 #include <Eigen/Geometry>
@@ -12,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace mg {
+namespace mg::garbing {
 
 /// Options of build_octree().
 struct OctreeOptions {
@@ -27,13 +26,6 @@ struct OctreeOptions {
   /// A cell inside one closed ball holds no boundary face: do not split it beyond what grading
   /// (criterion 4) demands. Changes no boundary leaf and no M1 face; only for tests and timing.
   bool skip_interior_cells = true;
-  /// The cones of G (ALGORITHM.md "Step 3"). The tree wraps G, not only the balls: a cell is
-  /// active when it meets a ball or the convex hull of a cone's two balls, and criteria 1 and
-  /// 3 see the cones of Cones(c) as primitives too (a cone meets its own balls and the cones
-  /// sharing one; other meetings are tested exactly). Then M1 lies outside G within a leaf
-  /// everywhere, also over the creases the cones fill, and no migration crosses a crease.
-  /// ConeSource::none: the union of the balls.
-  ConeOptions cones;
 };
 
 /// An octree cell. Integer coordinates: the cell spans [ijk, ijk + 1] * side(level).
@@ -44,49 +36,49 @@ struct OctreeCell {
   int first_child = -1;   ///< children are cells first_child .. first_child + 7; -1 for a leaf
   bool inside_one_ball = false;  ///< the closed cube lies inside one closed ball
   std::vector<int> spheres;      ///< Spheres(c): atoms whose closed ball meets the closed cube
-  /// Cones(c): indices into Octree::cone_pairs of the cones whose solid (the convex hull of
-  /// the two balls) meets the closed cube where neither ball does (through the fill of the
-  /// crease between the balls), sorted. A cone one of whose balls meets the cube is not
-  /// listed: its ball stands for it in the criteria. Empty in a cell inside one ball and its
-  /// descendants (they hold no boundary, and the criteria skip them).
+  /// Cones(c): the cones of G (index k: primitive id sphere_count + k) whose solid meets the
+  /// closed cube where neither ball does (through the fill of the crease between the balls),
+  /// sorted. A cone one of whose balls meets the cube is not listed: its ball stands for it in
+  /// the criteria. Empty in a cell inside one ball and its descendants (they hold no boundary,
+  /// and the criteria skip them).
   std::vector<int> cones;
   bool is_leaf() const { return first_child < 0; }
   bool is_active() const { return !spheres.empty() || !cones.empty(); }
 };
 
-/// The octree and its frame. Child k of a cell has offset (k & 1, k >> 1 & 1, k >> 2 & 1).
+/// The octree, in G's frame. Child k of a cell has offset (k & 1, k >> 1 & 1, k >> 2 & 1).
 struct Octree {
-  /// The root cube: world = origin + axes * local, local in [0, root_side]^3. `axes` holds the
-  /// principal axes of the atom centres as columns (right-handed, fixed signs; identity when
-  /// two eigenvalues are repeated, e.g. one atom, two atoms, a ring).
-  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  double root_side = 0;      ///< model units: the tight cube around the spheres, no padding
+  /// G's frame: world = frame.to_world(local), the root cube is local [0, root_side]^3.
+  Frame frame;
+  double root_side = 0;      ///< model units: the tight cube around the balls, no padding
   double rc = 0;             ///< characteristic radius (rmin + rmax) / 2, model units
   int min_depth = 0;         ///< d actually used
   int max_depth = 0;         ///< the safety stop given
   int depth = 0;             ///< deepest level present
   bool hit_max_depth = false;        ///< a criterion wanted to split a cell at max_depth
   std::array<long, 4> splits = {0, 0, 0, 0};  ///< cells split by criterion k (first reason)
-  std::vector<std::array<int, 2>> cone_pairs;  ///< G's cones, from cone_pairs(atoms, opt.cones)
-  double seconds_cone_pairs = 0;     ///< time build_octree spent choosing them
   std::vector<OctreeCell> cells;     ///< cells[0] is the root
   std::vector<int> leaves;           ///< leaf indices, sorted by (Morton order, level)
 
   double side(int level) const;                             ///< cube side at `level`
   /// The closed cube of a cell in the root frame: [ijk, ijk + 1] * side(level).
   Eigen::AlignedBox3d cube(const OctreeCell& cell) const;
-  Eigen::Vector3d to_local(const Eigen::Vector3d& world) const;   ///< into [0, root_side]^3
-  Eigen::Vector3d to_world(const Eigen::Vector3d& local) const;
+  Eigen::Vector3d to_local(const Eigen::Vector3d& world) const { return frame.to_local(world); }
+  Eigen::Vector3d to_world(const Eigen::Vector3d& local) const { return frame.to_world(local); }
 };
 
-/// Step 1: builds T from the atoms.
-/// @param atoms centres and radii in model units
-/// @pre atoms valid (see validate); 1 <= opt.max_depth <= 20; 0 <= opt.min_depth <= max_depth
+/// Step 1: builds T wrapping G. A cell is active when it meets a ball or the solid of a cone
+/// (the convex hull of its two balls); criteria 1 and 3 see the cones of Cones(c) as
+/// primitives too (a cone meets its own balls and the cones sharing one; other meetings are
+/// tested exactly). So M1 lies outside G within a leaf everywhere, also over the creases the
+/// cones fill, and no migration crosses a crease. G without cones: the union of the balls.
+/// @param g  G, built in its atoms' bounding cube frame (make_target_shape(atoms, cones,
+///           bounding_cube_frame(atoms)))
+/// @pre g.frame().cube_side > 0; 1 <= opt.max_depth <= 20; 0 <= opt.min_depth <= max_depth
 ///      (automatic d above max_depth is refused too)
-/// @throws InvalidInput naming the bad atom or option
+/// @throws InvalidInput naming the bad option
 /// @post criteria 1-4 (those switched on) hold at every active leaf, unless hit_max_depth
-Octree build_octree(const MedialSurface& atoms, const OctreeOptions& opt = {});
+Octree build_octree(const TargetShape& g, const OctreeOptions& opt = {});
 
 /// The deepest cell covering the cell (level, ijk) (itself if it exists, else the leaf
 /// ancestor), or -1 if ijk lies outside the root.
@@ -101,4 +93,4 @@ void leaves_facing(const Octree& tree, int c, const std::array<int, 3>& offset,
 /// sorted by index, without `c` itself.
 void touching_leaves(const Octree& tree, int c, std::vector<int>& out);
 
-}  // namespace mg
+}  // namespace mg::garbing

@@ -1,7 +1,8 @@
 #pragma once
 /// \file refine_mesh.h
 /// Step 3 of the garbing: M2, the dual of M1 migrated onto the target shape G (paper section
-/// 3.3, ALGORITHM.md "Step 3").
+/// 3.3, docs/algorithm.md "Step 3"). Its parts, in the order they run: the dual of M1, the
+/// migration of every vertex onto G, gap splitting, fold repair (src/m2_*.cpp).
 
 #include "garbing/coarse_mesh.h"
 #include "garbing/octree.h"
@@ -9,7 +10,7 @@
 
 #include <cstddef>
 
-namespace mg {
+namespace mg::garbing {
 
 struct RefineOptions {
   bool dual = true;         ///< false: migrate M1 itself, triangulated (Figure 11's ablation)
@@ -30,7 +31,6 @@ struct RefineOptions {
 };
 
 struct RefineStats {
-  std::size_t cones = 0;
   std::size_t vertices_migrated = 0;
   std::size_t fallback_zero_direction = 0;  ///< |m(v)| ~ 0: closest point of G instead
   std::size_t fallback_missed = 0;          ///< the ray met no primitive
@@ -46,9 +46,9 @@ struct RefineStats {
   std::size_t repaired_vertices = 0;  ///< vertices moved by the repair (on G or pulled back)
   std::size_t pulled_back = 0;        ///< pull-back steps taken (leave a vertex off G)
   std::size_t left_off_g = 0;  ///< vertices the repair's stages 2-3 left off G (pulled back)
-  /// seconds_cones: building G's primitives and hierarchy (choosing the cone pairs is the
-  /// octree's: Octree::seconds_cone_pairs).
-  double seconds_cones = 0, seconds_migration = 0, seconds_repair = 0;
+  /// The dual, migration, triangulation, gap splitting and subdivision; the fold check and
+  /// repair. Seconds.
+  double seconds_migration = 0, seconds_repair = 0;
 };
 
 struct RefinedMesh {
@@ -57,15 +57,19 @@ struct RefinedMesh {
 };
 
 /// Step 3: M2. With `opt.dual`, one vertex per M1 face at the centre of its square and one
-/// face per M1 vertex, triangulated (V(M2) = F(M1) minus nothing; faces from valence-2 M1
-/// vertices collapse to an edge). Each vertex moves along m(v) = -sum of m_g(v) over the
-/// primitives of its leaf onto G; fold-overs are detected and repaired.
+/// face per M1 vertex, triangulated (V(M2) = F(M1); faces from valence-2 M1 vertices collapse
+/// to an edge). Each vertex moves along m(v) = -sum of m_g(v) over the primitives P of its
+/// leaf onto G: outside the union, to where the line first enters it; inside, back to where
+/// it leaves. Edges bridging a notch of G are split (opt.max_gap); fold-overs are detected and
+/// repaired.
 /// @param m1    from extract_coarse_mesh(tree)
-/// @param tree  from build_octree(atoms): its cone_pairs are G's cones
-/// @param atoms the medial surface the tree was built from
+/// @param tree  from build_octree(g)
+/// @param g     the target shape the tree was built from (its frame is the tree's)
 /// @pre opt.subdivisions >= 0, opt.max_travel > 0, opt.repair_rounds >= 0, opt.max_gap >= 0,
-///      opt.gap_rounds >= 0  @throws InvalidInput
-RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const MedialSurface& atoms,
+///      opt.gap_rounds >= 0; tree and g agree  @throws InvalidInput
+/// @post a closed oriented triangle mesh in world coordinates; every vertex on G but those
+///       counted in stats (fallbacks, left_off_g)
+RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const TargetShape& g,
                         const RefineOptions& opt = {});
 
-}  // namespace mg
+}  // namespace mg::garbing

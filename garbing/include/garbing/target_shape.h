@@ -1,44 +1,48 @@
 #pragma once
 /// \file target_shape.h
-/// The target shape G of the garbing (ALGORITHM.md "Step 3"): the boundary of the union of
-/// the primitives P — every atom's sphere, plus for chosen intersecting pairs of atoms the cone
-/// tangent to both (cone and spheres together form the pair's convex hull).
-/// Queries are exact for spheres and cones; a bounding-volume hierarchy over the primitives'
-/// boxes is the broad phase.
+/// The target shape G of the garbing (docs/algorithm.md, "Step 3"): the boundary of the union
+/// of the primitives (primitives.h): every atom's ball, plus for chosen intersecting pairs of
+/// atoms the cone tangent to both (cone and balls together form the pair's convex hull).
+/// G is built once, from the atoms and the cone options, and passed as a value to every stage
+/// that reads it: the octree, M2's migration and repair, `evaluate atoms`. Queries are exact for
+/// balls and cones; a bounding-volume hierarchy over the primitives' boxes is the broad phase.
 
-#include "garbing/medial_surface.h"
+#include "core/medial_surface.h"
+#include "garbing/frame.h"
+#include "garbing/primitives.h"
 
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
-namespace mg {
+namespace mg::garbing {
 
 /// Which pairs of atoms get a cone.
 enum class ConeSource {
   regular_triangulation,  ///< pairs adjacent in the regular triangulation (weights r^2)
   all_pairs,              ///< every intersecting pair (the paper; quadratic on pole skeletons)
   ma_edges,               ///< the `.ma` file's edges
-  none                    ///< spheres only
+  none                    ///< balls only
 };
 
+/// Which cones G has.
 struct ConeOptions {
   ConeSource source = ConeSource::regular_triangulation;
   /// Keep a cone only if the two spheres' intersection circle has a radius of at least this
   /// fraction of the smaller sphere's radius (0 keeps every intersecting pair; 1 keeps none
-  /// but concentric spheres). Cones of barely intersecting balls bridge
-  /// concavities: chords across the 60 x 20 torus's hole take H(G, O) from 0.30% (neighbour
-  /// cones only) to 1.09% with every regular-triangulation cone. Default 0.9, chosen by
-  /// measuring H(G, O) over the reference models (results/cone_filter.md).
+  /// but concentric spheres). Cones of barely intersecting balls bridge concavities: chords
+  /// across the 60 x 20 torus's hole take H(G, O) from 0.30% (neighbour cones only) to 1.09%
+  /// with every regular-triangulation cone. Default 0.9, chosen by measuring H(G, O) over the
+  /// reference models (results/cone_filter.md).
   double min_circle_ratio = 0.9;
   /// Keep a cone only if its lateral surface stands off the crease of its two spheres (the
   /// circle where they meet) by at most this many rc / 8 (the automatic leaf side bound;
   /// rc = (rmin + rmax) / 2, from the atoms alone); 0: no limit. Deep crease fills are where
   /// G strays from the object most. Default 1, chosen with the circle ratio by measuring
-  /// H(G, O) (results/cone_filter.md). (It also once kept the migration from folding across
-  /// crease fills, before the octree wrapped the cones.)
+  /// H(G, O) (results/cone_filter.md).
   double max_collar = 1;
 };
 
@@ -46,61 +50,43 @@ struct ConeOptions {
 ConeSource parse_cone_source(const std::string& name);
 
 /// The pairs (i < j) that get a cone: from `opt.source`, kept when the two balls intersect,
-/// neither contains the other, and the circle-ratio filter passes. Sorted.
-/// @pre atoms valid   @throws InvalidInput
+/// neither contains the other, and the circle-ratio and collar filters pass. Sorted. Chosen
+/// on the atoms as given (world coordinates).
+/// @pre atoms valid; 0 <= min_circle_ratio <= 1; max_collar >= 0   @throws InvalidInput
 std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const ConeOptions& opt);
 
-/// The solid cone tangent to two intersecting balls (c1, r1), (c2, r2), L > |r1 - r2|: the
-/// truncated cone between the two tangent circles. Axial coordinate t from c1 along u.
-struct Cone {
-  int a = -1, b = -1;        ///< atom indices
-  Eigen::Vector3d c1, u;     ///< first centre, unit axis toward the second
-  double r1 = 0, length = 0; ///< first radius, L = |c2 - c1|
-  double r2 = 0;             ///< second radius
-  double sin_phi = 0, cos_phi = 1;  ///< sin(phi) = (r1 - r2) / L
-  double t_lo = 0, t_hi = 0;        ///< axial range of the lateral surface
-  double rho_lo = 0, rho_hi = 0;    ///< its radius at t_lo and t_hi
-  /// A ball holding the frustum: centred on the axis midway between t_lo and t_hi, through
-  /// its rims (squared radius); a cheap rejection for ray tests.
-  Eigen::Vector3d bound_centre = Eigen::Vector3d::Zero();
-  double bound_radius2 = 0;
-};
-
-/// Builds the cone of atoms a and b. @pre the balls intersect and neither contains the other
-Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b);
-
-/// min over t in [0, 1] of |p - c(t)| - r(t), c and r linear from (c1, r1) to (c2, r2): the
-/// distance from p to the cone's solid (the convex hull of its two balls) when p is outside
-/// it; when inside, minus the depth of p in the deepest ball B(c(t), r(t)), a lower bound on
-/// its depth in the solid. Closed form: the stationary t has the foot of p on the axis ahead
-/// of c(t) by tan(phi) times p's distance from the axis.
-double hull_distance(const Cone& k, const Eigen::Vector3d& p);
-
-/// The per-primitive migration vector of ALGORITHM.md: with p the foot on the primitive's axis
-/// of the surface normal through v and r the radius there,
-/// m_g(v) = r (v - p) / |v - p|^2. Zero when v is on the axis, and for a cone when the foot
-/// falls outside [0, L].
-Eigen::Vector3d migration_vector(const MedialAtom& sphere, const Eigen::Vector3d& v);
-Eigen::Vector3d migration_vector(const Cone& cone, const Eigen::Vector3d& v);
-
-/// A primitive: index < number of atoms is a sphere, otherwise a cone.
+/// A primitive of G: id < sphere_count() is the ball of atom id, otherwise the cone
+/// id - sphere_count().
 using PrimitiveId = int;
 
-/// G with its spatial queries. Immutable after construction; queries are thread-safe.
+/// G with its spatial queries, in the coordinates of its frame (every point given to or
+/// returned by a query is local). Immutable after construction; queries are thread-safe.
 class TargetShape {
  public:
-  /// @param atoms  the spheres (any frame: G lives in the atoms' frame)
-  /// @param pairs  the cones (from cone_pairs())
-  TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs);
+  /// G of the atoms' balls and the cones of `pairs`, expressed in `frame` (atom centres
+  /// mapped by frame.to_local; world coordinates by default).
+  /// @pre atoms valid; every pair indexes two intersecting atoms, neither holding the other
+  TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
+              const Frame& frame = {});
   ~TargetShape();
   TargetShape(TargetShape&&) noexcept;
   TargetShape& operator=(TargetShape&&) noexcept;
 
-  std::size_t sphere_count() const { return spheres_.size(); }
+  const Frame& frame() const { return frame_; }
+  /// The balls of G (the atoms, in G's frame), without connectivity.
+  const MedialSurface& atoms() const { return atoms_; }
+  std::size_t sphere_count() const { return atoms_.atoms.size(); }
   std::size_t cone_count() const { return cones_.size(); }
-  const MedialAtom& sphere(PrimitiveId i) const { return spheres_[i]; }
-  const Cone& cone(PrimitiveId i) const { return cones_[i - spheres_.size()]; }
-  bool is_sphere(PrimitiveId i) const { return i < static_cast<int>(spheres_.size()); }
+  std::size_t primitive_count() const { return atoms_.atoms.size() + cones_.size(); }
+  const MedialAtom& sphere(PrimitiveId i) const { return atoms_.atoms[i]; }
+  const Cone& cone(PrimitiveId i) const { return cones_[i - atoms_.atoms.size()]; }
+  bool is_sphere(PrimitiveId i) const { return i < static_cast<int>(atoms_.atoms.size()); }
+
+  /// The cones with atom `a` as an end, as primitive ids [first, second), increasing.
+  std::pair<const PrimitiveId*, const PrimitiveId*> cones_of_atom(int a) const {
+    return {cones_by_atom_.data() + cones_by_atom_start_[a],
+            cones_by_atom_.data() + cones_by_atom_start_[a + 1]};
+  }
 
   /// m_g of primitive i at v.
   Eigen::Vector3d migration_vector(PrimitiveId i, const Eigen::Vector3d& v) const;
@@ -111,6 +97,11 @@ class TargetShape {
   /// Whether p lies strictly deeper than `eps` inside primitive i (model units; a negative eps
   /// grows the primitive).
   bool primitive_contains(PrimitiveId i, const Eigen::Vector3d& p, double eps = 0) const;
+
+  /// Parameter interval [t0, t1] of the line origin + t dir inside primitive i; false if the
+  /// line misses it.
+  bool ray_interval(PrimitiveId i, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                    double& t0, double& t1) const;
 
   /// From a point outside the union: the smallest t in [0, t_max] at which the ray
   /// origin + t dir enters a primitive. False if it enters none by t_max.
@@ -130,14 +121,9 @@ class TargetShape {
   bool line_to_boundary(const Eigen::Vector3d& v, const Eigen::Vector3d& dir, double t_max,
                         double& t, bool& inside) const;
 
-  /// Parameter interval [t0, t1] of the line origin + t dir inside primitive i; false if the
-  /// line misses it.
-  bool ray_interval(PrimitiveId i, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
-                    double& t0, double& t1) const;
-
   /// A closest point of G to p. Exact when p is outside the union. Inside, the nearest of the
   /// exposed (on no other primitive's inside) candidates: each nearby primitive's nearest
-  /// surface point, the nearest point of each circle where two nearby spheres meet, and the
+  /// surface point, the nearest point of each crease where two nearby spheres meet, and the
   /// exits along 26 directions. Exact for unions of spheres and wherever the nearest point of G
   /// lies inside one primitive's patch; elsewhere (a crease with a cone) an upper bound: every
   /// candidate lies on G.
@@ -162,17 +148,20 @@ class TargetShape {
   void primitives_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                               std::vector<PrimitiveId>& out) const;
 
-  /// The cones with atom `a` as an end: ids [first, second).
-  std::pair<const PrimitiveId*, const PrimitiveId*> cones_of_atom(int a) const {
-    return {cones_by_atom_.data() + cones_by_atom_start_[a], cones_by_atom_.data() + cones_by_atom_start_[a + 1]};
-  }
-
  private:
   struct Bvh;
-  std::vector<MedialAtom> spheres_;
-  std::vector<Cone> cones_;
+  Frame frame_;
+  MedialSurface atoms_;                                    // the balls, in frame_ (no connectivity)
+  std::vector<Cone> cones_;                                // in frame_
   std::vector<int> cones_by_atom_start_, cones_by_atom_;  // CSR: atom -> its cones' ids
   std::unique_ptr<Bvh> bvh_;
 };
 
-}  // namespace mg
+/// G of the atoms: the cones cone_pairs(atoms, cones) chooses (on the atoms as given), the
+/// primitives expressed in `frame` (the garbing passes bounding_cube_frame(atoms); the default,
+/// world coordinates, is what `evaluate atoms` measures in).
+/// @pre atoms valid; cone options as cone_pairs   @throws InvalidInput
+TargetShape make_target_shape(const MedialSurface& atoms, const ConeOptions& cones = {},
+                              const Frame& frame = {});
+
+}  // namespace mg::garbing

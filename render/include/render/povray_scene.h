@@ -3,8 +3,8 @@
 /// POV-Ray 3.7 scenes of meshes (smooth `mesh2`) and medial surfaces (spheres coloured by
 /// radius, hot for small to cold for large, as the paper's Figure 1), framed by a View.
 
-#include "garbing/medial_surface.h"
-#include "garbing/mesh.h"
+#include "core/medial_surface.h"
+#include "core/mesh.h"
 #include "render/vertex_normals.h"
 #include "render/view.h"
 

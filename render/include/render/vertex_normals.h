@@ -3,18 +3,14 @@
 /// Shading normals of a polygon soup, computed from the faces alone: the soup need not be a
 /// manifold, closed or even consistently oriented mesh (a render shows whatever a file holds).
 
-#include "garbing/mesh.h"
+#include "core/mesh.h"
+#include "core/mesh_normals.h"
 
 #include <vector>
 
 namespace mg::render {
 
-/// How the faces around a vertex contribute to its normal.
-enum class NormalWeighting {
-  angle,  ///< by the face's interior angle at the vertex (Thuermer and Wuethrich 1998):
-          ///< independent of how a flat region is triangulated
-  area,   ///< by the face's area
-};
+using mg::NormalWeighting;
 
 /// Options of shading_normals().
 struct NormalOptions {
@@ -36,17 +32,14 @@ struct ShadingNormals {
   bool per_vertex = true;
 };
 
-/// Unit normal of a polygon by Newell's method (exact for planar polygons, robust for non-planar
-/// ones), oriented by the vertex order (CCW seen from the side it points to).
-/// @return the zero vector for a degenerate face (zero area)
-Eigen::Vector3d face_normal(const PolygonSoup& soup, int face);
-
 /// Shading normals of every face corner of `soup`.
 /// A vertex whose weighted sum vanishes (no face, only degenerate faces, or opposite faces that
 /// cancel) gets the normal of its first non-degenerate face, or +z; a corner whose sum vanishes
 /// gets its face's normal, so every returned vector has unit length.
-/// @pre face indices in range (as read_polygon_soup guarantees); opt.crease_angle in [0, 180]
-/// @throws InvalidInput if the crease angle is outside [0, 180] or an index is out of range
+/// Face and vertex normals and corner weights are mg's (mesh_normals.h).
+/// @pre the soup passes validate_soup (as read_polygon_soup guarantees); opt.crease_angle in
+///      [0, 180]
+/// @throws InvalidInput if the crease angle is outside [0, 180] or the soup is invalid
 ShadingNormals shading_normals(const PolygonSoup& soup, const NormalOptions& opt = {});
 
 }  // namespace mg::render

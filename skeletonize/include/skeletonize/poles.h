@@ -1,11 +1,11 @@
 #pragma once
 /// \file poles.h
 /// Medial atoms from a closed mesh: the inner Voronoi poles of surface samples (the power shape
-/// of Amenta, Choi and Kolluri 2001, as the paper's section 4). See ALGORITHM.md
+/// of Amenta, Choi and Kolluri 2001, as the paper's section 4). See docs/algorithm.md
 /// "Skeletonization".
 
-#include "garbing/medial_surface.h"
-#include "garbing/mesh.h"
+#include "core/medial_surface.h"
+#include "core/mesh.h"
 
 #include <cstddef>
 #include <cstdint>

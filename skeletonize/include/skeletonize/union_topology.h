@@ -4,7 +4,7 @@
 /// the dual complex of the union (the weighted alpha complex at alpha = 0 of the regular
 /// triangulation, weights r^2), which is homotopy equivalent to the union.
 
-#include "garbing/medial_surface.h"
+#include "core/medial_surface.h"
 
 #include <array>
 #include <cstddef>

@@ -1,20 +1,15 @@
 #pragma once
 /// \file detail/convex_search.h
-/// Internal: the two pieces of the "does a cone's solid meet this box" tests shared by the
-/// octree and G's box query. A cone's solid, the convex hull of its two balls, is the union
-/// of the balls B(c(t), r(t)) with c and r linear in t in [0, 1]; it meets a box exactly when
-/// the convex function box_distance(c(t)) - r(t) reaches 0 on [0, 1].
+/// Internal: the one-dimensional convex search behind the primitives' box and hull tests
+/// (primitives.cpp). A cone's solid, the convex hull of its two balls, is the union of the
+/// balls B(c(t), r(t)) with c and r linear in t in [0, 1]; it meets a box exactly when the
+/// convex function box_distance(c(t)) - r(t) reaches 0 on [0, 1].
 
 #include <Eigen/Core>
 
 #include <algorithm>
 
-namespace mg::detail {
-
-/// Distance from p to the closed box [lo, hi] (0 inside).
-inline double box_distance(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3d& p) {
-  return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm();
-}
+namespace mg::garbing::detail {
 
 /// Whether a convex function f on [0, 1], its slope bounded by `lipschitz`, reaches <= 0:
 /// golden section that stops as soon as a sample is <= 0 (yes) or the bound from the
@@ -50,4 +45,4 @@ bool convex_reaches_zero(const F& f, double lipschitz) {
   return true;
 }
 
-}  // namespace mg::detail
+}  // namespace mg::garbing::detail

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <utility>
 
-namespace mg::detail {
+namespace mg::garbing::detail {
 
 /// Clips [t0, t1] to the parameters t where o + t d lies in the closed box [lo, hi]; inv_d
 /// is 1 / d per component (infinite where d is 0: that slab keeps the line when o lies in
@@ -30,4 +30,4 @@ inline bool clip_line_to_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& h
   return true;
 }
 
-}  // namespace mg::detail
+}  // namespace mg::garbing::detail

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-namespace mg::detail {
+namespace mg::garbing::detail {
 
 /// A set of undirected edges between vertices 0 .. n - 1: each vertex's higher neighbours in
 /// insertion order (a handful per vertex on a surface mesh, so a scan beats a tree).
@@ -86,4 +86,4 @@ inline bool min_diagonal_triangulation(const std::vector<int>& poly, const std::
   return true;
 }
 
-}  // namespace mg::detail
+}  // namespace mg::garbing::detail

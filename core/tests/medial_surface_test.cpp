@@ -1,0 +1,130 @@
+#include "core/errors.h"
+#include "core/medial_surface.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace {
+
+mg::MedialSurface parse(const std::string& text) {
+  std::istringstream in(text);
+  return mg::parse_medial_surface(in, "test.ma");
+}
+
+/// The message of the InvalidInput that parsing `text` throws ("" if none).
+std::string parse_error(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const mg::InvalidInput& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MedialSurface, ParsesMaWithCommentsBlankLinesAndConnectivity) {
+  const auto s = parse(
+      "# a comment\n"
+      "3 2 1   # header\n"
+      "\n"
+      "v 0 0 0 1\n"
+      "v 1.5 0 0 0.5\n"
+      "e 0 1\n"
+      "v 0 2 0 0.25\n"
+      "e 1 2\n"
+      "f 0 1 2\n");
+  ASSERT_EQ(s.atoms.size(), 3u);
+  EXPECT_EQ(s.atoms[1].centre, Eigen::Vector3d(1.5, 0, 0));
+  EXPECT_EQ(s.atoms[2].radius, 0.25);
+  ASSERT_EQ(s.edges.size(), 2u);
+  EXPECT_EQ(s.edges[1][0], 1);
+  EXPECT_EQ(s.edges[1][1], 2);
+  ASSERT_EQ(s.faces.size(), 1u);
+  EXPECT_EQ(s.faces[0][2], 2);
+}
+
+TEST(MedialSurface, ParsesPlainXyzr) {
+  const auto s = parse("0 0 0 1\n# c\n1 2 3 0.5\n");
+  ASSERT_EQ(s.atoms.size(), 2u);
+  EXPECT_EQ(s.atoms[1].centre, Eigen::Vector3d(1, 2, 3));
+  EXPECT_TRUE(s.edges.empty());
+}
+
+TEST(MedialSurface, RoundTripIsExact) {
+  mg::MedialSurface s;
+  s.atoms = {{Eigen::Vector3d(0.1, 1.0 / 3.0, -2e-17), std::sqrt(2.0)},
+             {Eigen::Vector3d(1e10, -7.25, 3.14159265358979), 1e-12},
+             {Eigen::Vector3d(0, 0, 1), 0.3}};
+  s.edges = {{0, 1}, {1, 2}};
+  s.faces = {{0, 1, 2}};
+  const auto path = std::filesystem::temp_directory_path() / "mg_round_trip.ma";
+  mg::write_medial_surface(s, path.string());
+  const auto t = mg::read_medial_surface(path.string());
+  std::filesystem::remove(path);
+  ASSERT_EQ(t.atoms.size(), s.atoms.size());
+  for (std::size_t i = 0; i < s.atoms.size(); ++i) {
+    EXPECT_EQ(t.atoms[i].centre, s.atoms[i].centre);  // bit-exact with 17 digits
+    EXPECT_EQ(t.atoms[i].radius, s.atoms[i].radius);
+  }
+  EXPECT_EQ(t.edges, s.edges);
+  EXPECT_EQ(t.faces, s.faces);
+}
+
+TEST(MedialSurface, RefusesBadInputWithFileLineAndReason) {
+  EXPECT_EQ(parse_error(""), "test.ma: empty file, no atoms");
+  EXPECT_EQ(parse_error("# only a comment\n\n"), "test.ma: empty file, no atoms");
+  EXPECT_EQ(parse_error("0 0 0\n"), "test.ma: no atoms");
+  EXPECT_EQ(parse_error("2 0 0\nv 0 0 0 1\n"),
+            "test.ma: header announces 2 atoms ('v' lines), found 1");
+  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 1\nv 1 0 0 1\n"),
+            "test.ma:3: more 'v' lines than the header's nv = 1");
+  EXPECT_EQ(parse_error("1 0 0\nv 0 zero 0 1\n"), "test.ma:2: y is not a number: 'zero'");
+  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 nan\n"), "test.ma:2: radius must be finite, got nan");
+  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 inf\n"), "test.ma:2: radius must be finite, got inf");
+  EXPECT_EQ(parse_error("1 0 0\nv inf 0 0 1\n"), "test.ma:2: centre must be finite");
+  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 0\n"), "test.ma:2: radius must be > 0, got 0");
+  EXPECT_EQ(parse_error("1 0 0\n\nv 0 0 0 -0.3\n"), "test.ma:3: radius must be > 0, got -0.3");
+  EXPECT_EQ(parse_error("2 1 0\nv 0 0 0 1\nv 1 0 0 1\ne 0 2\n"),
+            "test.ma:4: edge index 2 out of range [0, 2)");
+  EXPECT_EQ(parse_error("3 0 1\nv 0 0 0 1\nv 1 0 0 1\nv 2 0 0 1\nf 0 1 -1\n"),
+            "test.ma:5: face index -1 out of range [0, 3)");
+  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0\n"), "test.ma:2: expected 'v x y z r', got 4 fields");
+  EXPECT_EQ(parse_error("1 0 0\nx 0 0 0 1\n"), "test.ma:2: unknown record 'x' (expected v, e or f)");
+  EXPECT_EQ(parse_error("0 0 0 1\n1 1 1\n"),
+            "test.ma:2: expected a header 'nv ne nf' or an atom 'x y z r', got 3 fields");
+}
+
+TEST(MedialSurface, ReadingAMissingFileIsAnIoError) {
+  EXPECT_THROW(mg::read_medial_surface("/nonexistent/dir/none.ma"), mg::IoError);
+}
+
+TEST(MedialSurface, ValidateNamesTheFirstBadAtom) {
+  mg::MedialSurface s;
+  EXPECT_THROW(mg::validate(s), mg::InvalidInput);
+  s.atoms = {{Eigen::Vector3d::Zero(), 1.0}, {Eigen::Vector3d::Zero(), -1.0}};
+  try {
+    mg::validate(s);
+    FAIL() << "negative radius accepted";
+  } catch (const mg::InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()), "atom 1: radius must be > 0, got -1");
+  }
+  s.atoms[1].radius = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(mg::validate(s), mg::InvalidInput);
+  s.atoms[1].radius = 1;
+  s.edges = {{0, 5}};
+  EXPECT_THROW(mg::validate(s), mg::InvalidInput);
+}
+
+TEST(MedialSurface, FailedWriteLeavesNoFile) {
+  mg::MedialSurface s;
+  s.atoms = {{Eigen::Vector3d::Zero(), 1.0}};
+  EXPECT_THROW(mg::write_medial_surface(s, "/nonexistent/dir/out.ma"), mg::IoError);
+  EXPECT_FALSE(std::filesystem::exists("/nonexistent/dir/out.ma"));
+}
+
+}  // namespace

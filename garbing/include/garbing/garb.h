@@ -1,0 +1,43 @@
+#pragma once
+/// \file garb.h
+/// The garbing as one call (docs/algorithm.md): the target shape G, then the paper's three
+/// steps (octree, coarse mesh M1, refined mesh M2). Used by the `garb` program; each stage is
+/// also callable on its own (target_shape.h, octree.h, coarse_mesh.h, refine_mesh.h).
+
+#include "garbing/coarse_mesh.h"
+#include "garbing/octree.h"
+#include "garbing/refine_mesh.h"
+#include "garbing/target_shape.h"
+
+namespace mg::garbing {
+
+/// Options of every stage.
+struct GarbOptions {
+  ConeOptions cones;     ///< which cones G has (its balls are the atoms)
+  OctreeOptions octree;  ///< step 1
+  RefineOptions refine;  ///< step 3
+};
+
+/// Wall-clock seconds of each stage.
+struct GarbSeconds {
+  double target_shape = 0;  ///< choosing the cone pairs and building G's hierarchy
+  double octree = 0, m1 = 0, m2 = 0;
+  double total() const { return target_shape + octree + m1 + m2; }
+};
+
+/// Every stage's result, in the order they are computed.
+struct Garbing {
+  TargetShape g;      ///< in the atoms' bounding cube frame
+  Octree tree;        ///< step 1
+  CoarseMesh m1;      ///< step 2, world coordinates
+  RefinedMesh m2;     ///< step 3, world coordinates, with its statistics
+  GarbSeconds seconds;
+};
+
+/// Garbs the atoms: G = make_target_shape(atoms, opt.cones, bounding_cube_frame(atoms)), then
+/// T = build_octree(G), M1 = extract_coarse_mesh(T), M2 = refine_mesh(M1, T, G). The result
+/// is the same at any thread count.
+/// @pre atoms valid; options as each stage documents   @throws InvalidInput
+Garbing garb(const MedialSurface& atoms, const GarbOptions& opt = {});
+
+}  // namespace mg::garbing

@@ -1,0 +1,25 @@
+#include "garbing/garb.h"
+
+#include "core/timer.h"
+
+namespace mg::garbing {
+
+Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
+  GarbSeconds seconds;
+  Stopwatch clock;
+  // G: the union of the atoms' balls and of the chosen cones, in the frame of the octree.
+  TargetShape g = make_target_shape(atoms, opt.cones, bounding_cube_frame(atoms));
+  seconds.target_shape = clock.restart();
+  // Step 1: the adaptive octree wrapping G.
+  Octree tree = build_octree(g, opt.octree);
+  seconds.octree = clock.restart();
+  // Step 2: M1, the boundary of the active leaves.
+  CoarseMesh m1 = extract_coarse_mesh(tree);
+  seconds.m1 = clock.restart();
+  // Step 3: M2, the dual of M1 migrated onto G.
+  RefinedMesh m2 = refine_mesh(m1, tree, g, opt.refine);
+  seconds.m2 = clock.restart();
+  return {std::move(g), std::move(tree), std::move(m1), std::move(m2), seconds};
+}
+
+}  // namespace mg::garbing
