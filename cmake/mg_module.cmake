@@ -58,3 +58,12 @@ function(mg_add_benchmark name)
   mg_set_warnings(${name})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bench)
 endfunction()
+
+# mg_add_python_test(<name> SCRIPT <file> [ARGS ...]): a Python test script of this folder, run
+# by CTest with Debian's interpreter (program-level checks: exit codes, messages, no partial
+# output). Properties (fixtures, labels) go through set_tests_properties.
+function(mg_add_python_test name)
+  cmake_parse_arguments(A "" "SCRIPT" "ARGS" ${ARGN})
+  add_test(NAME ${name}
+    COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/${A_SCRIPT} ${A_ARGS})
+endfunction()

@@ -3,7 +3,7 @@
 
 # Debian 12 packages the project builds and runs with.
 MG_PACKAGES=(
-  build-essential cmake ccache
+  build-essential cmake ccache clang-format
   libcgal-dev libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev libopenvdb-dev
   povray povray-includes meshlab xvfb xauth

@@ -13,80 +13,109 @@
 
 namespace {
 
-int models_main(int argc, char** argv) {
-  CLI::App app{"Generate reference meshes (sphere, torus, bumpy torus) and report mesh topology."};
-  app.option_defaults()->always_capture_default();
-  app.require_subcommand(1);
+/// `models generate SHAPE -o MESH`: the shape's parameters, defaults as on the command line.
+struct GenerateArgs {
+  std::string shape;  ///< sphere | torus | bumpy-torus
+  std::string output;
+  int frequency = 18;      ///< sphere: geodesic frequency (V = 10 f^2 + 2)
+  double radius = 1.0;     ///< sphere, model units
+  int ring = 60;           ///< torus: samples around the z axis
+  int tube = 20;           ///< torus: samples around the tube
+  double major = 1.0;      ///< torus: axis to tube centre
+  double minor = 0.3;      ///< torus: tube radius
+  double amplitude = 0.1;  ///< bumpy torus: relative bump height
+  int bumps_ring = 12;     ///< bumpy torus: bumps around the z axis
+  int bumps_tube = 6;      ///< bumpy torus: bumps around the tube
+};
 
-  auto* gen = app.add_subcommand("generate", "write a generated closed triangle mesh");
-  std::string shape, output;
-  int frequency = 18, ring = 60, tube = 20, bumps_ring = 12, bumps_tube = 6;
-  double radius = 1.0, major = 1.0, minor = 0.3, amplitude = 0.1;
-  gen->add_option("shape", shape, "sphere | torus | bumpy-torus")
+CLI::App* add_generate(CLI::App& app, GenerateArgs& args) {
+  auto* sub = app.add_subcommand("generate", "write a generated closed triangle mesh");
+  sub->add_option("shape", args.shape, "sphere | torus | bumpy-torus")
       ->required()
       ->check(CLI::IsMember({"sphere", "torus", "bumpy-torus"}));
-  gen->add_option("-o,--output", output, "output mesh (.off, .obj, .ply, .stl)")->required();
-  gen->add_option("--frequency", frequency, "sphere: geodesic frequency f (V = 10 f^2 + 2)");
-  gen->add_option("--radius", radius, "sphere: radius, model units");
-  gen->add_option("--ring", ring, "torus: samples around the z axis");
-  gen->add_option("--tube", tube, "torus: samples around the tube");
-  gen->add_option("--major", major, "torus: distance from the axis to the tube centre");
-  gen->add_option("--minor", minor, "torus: tube radius");
-  gen->add_option("--amplitude", amplitude, "bumpy torus: relative bump height");
-  gen->add_option("--bumps-ring", bumps_ring, "bumpy torus: bumps around the z axis");
-  gen->add_option("--bumps-tube", bumps_tube, "bumpy torus: bumps around the tube");
+  sub->add_option("-o,--output", args.output, "output mesh (.off, .obj, .ply, .stl)")->required();
+  sub->add_option("--frequency", args.frequency, "sphere: geodesic frequency f (V = 10 f^2 + 2)");
+  sub->add_option("--radius", args.radius, "sphere: radius, model units");
+  sub->add_option("--ring", args.ring, "torus: samples around the z axis");
+  sub->add_option("--tube", args.tube, "torus: samples around the tube");
+  sub->add_option("--major", args.major, "torus: distance from the axis to the tube centre");
+  sub->add_option("--minor", args.minor, "torus: tube radius");
+  sub->add_option("--amplitude", args.amplitude, "bumpy torus: relative bump height");
+  sub->add_option("--bumps-ring", args.bumps_ring, "bumpy torus: bumps around the z axis");
+  sub->add_option("--bumps-tube", args.bumps_tube, "bumpy torus: bumps around the tube");
+  return sub;
+}
 
-  auto* info = app.add_subcommand("info", "print vertices, faces, genus, closedness, diagonal");
-  std::string input;
+int run_generate(const GenerateArgs& args) {
+  mg::check_output_path(args.output, {});
+  mg::PolygonSoup soup;
+  if (args.shape == "sphere")
+    soup = mg::make_geodesic_sphere(args.frequency, args.radius);
+  else if (args.shape == "torus")
+    soup = mg::make_torus(args.ring, args.tube, args.major, args.minor);
+  else
+    soup = mg::make_bumpy_torus(args.ring, args.tube, args.major, args.minor, args.amplitude,
+                                args.bumps_ring, args.bumps_tube);
+  mg::write_mesh(mg::mesh_from_soup(soup, args.shape), args.output);
+  return 0;
+}
+
+/// `models info MESH [--json]`.
+struct InfoArgs {
+  std::string mesh;
   bool json = false;
-  info->add_option("mesh", input, "input mesh")->required();
-  info->add_flag("--json", json, "machine-readable output");
+};
 
-  mg::parse_command_line(app, argc, argv);
+CLI::App* add_info(CLI::App& app, InfoArgs& args) {
+  auto* sub = app.add_subcommand("info", "print vertices, faces, genus, closedness, diagonal");
+  sub->add_option("mesh", args.mesh, "input mesh")->required();
+  sub->add_flag("--json", args.json, "machine-readable output");
+  return sub;
+}
 
-  if (*gen) {
-    mg::check_output_path(output, {});
-    mg::PolygonSoup soup;
-    if (shape == "sphere")
-      soup = mg::make_geodesic_sphere(frequency, radius);
-    else if (shape == "torus")
-      soup = mg::make_torus(ring, tube, major, minor);
-    else
-      soup = mg::make_bumpy_torus(ring, tube, major, minor, amplitude, bumps_ring, bumps_tube);
-    mg::write_mesh(mg::mesh_from_soup(soup, shape), output);
-    return 0;
-  }
-
+int run_info(const InfoArgs& args) {
+  const std::string& input = args.mesh;
   const mg::PolygonSoup soup = mg::read_polygon_soup(input);
   const mg::MeshTopology t = mg::mesh_topology(soup);
   const double diagonal = mg::bbox_diagonal(soup.points);
-  if (json) {
-    nlohmann::ordered_json j;
-    j["file"] = input;
-    j["vertices"] = t.vertices;
-    j["faces"] = t.faces;
-    j["edges"] = t.edges;
-    j["components"] = t.components;
-    j["euler"] = t.euler;
-    j["genus"] = t.genus;
-    j["closed"] = t.closed;
-    j["manifold"] = t.manifold;
-    j["oriented"] = t.oriented;
-    j["boundary_edges"] = t.boundary_edges;
-    j["nonmanifold_edges"] = t.nonmanifold_edges;
-    j["nonmanifold_vertices"] = t.nonmanifold_vertices;
-    j["bbox_diagonal"] = diagonal;
+  if (args.json) {
+    nlohmann::ordered_json j = {{"file", input},
+                                {"vertices", t.vertices},
+                                {"faces", t.faces},
+                                {"edges", t.edges},
+                                {"components", t.components},
+                                {"euler", t.euler},
+                                {"genus", t.genus},
+                                {"closed", t.closed},
+                                {"manifold", t.manifold},
+                                {"oriented", t.oriented},
+                                {"boundary_edges", t.boundary_edges},
+                                {"nonmanifold_edges", t.nonmanifold_edges},
+                                {"nonmanifold_vertices", t.nonmanifold_vertices},
+                                {"bbox_diagonal", diagonal}};
     if (!t.first_problem.empty()) j["first_problem"] = t.first_problem;
-    std::cout << std::setw(2) << j << '\n';
+    mg::print_json(std::cout, j);
   } else {
     std::cout << input << ": V " << t.vertices << ", F " << t.faces << ", E " << t.edges
-              << ", components " << t.components << ", euler " << t.euler << ", genus "
-              << t.genus << ", closed " << (t.closed ? "yes" : "no") << ", manifold "
+              << ", components " << t.components << ", euler " << t.euler << ", genus " << t.genus
+              << ", closed " << (t.closed ? "yes" : "no") << ", manifold "
               << (t.manifold ? "yes" : "no") << ", oriented " << (t.oriented ? "yes" : "no")
               << ", bbox diagonal " << std::setprecision(6) << diagonal << '\n';
     if (!t.first_problem.empty()) std::cout << "  first defect: " << t.first_problem << '\n';
   }
   return 0;
+}
+
+int models_main(int argc, char** argv) {
+  CLI::App app{"Generate reference meshes (sphere, torus, bumpy torus) and report mesh topology."};
+  app.option_defaults()->always_capture_default();
+  app.require_subcommand(1);
+  GenerateArgs generate;
+  InfoArgs info;
+  CLI::App* generate_cmd = add_generate(app, generate);
+  add_info(app, info);
+  mg::parse_command_line(app, argc, argv);
+  return *generate_cmd ? run_generate(generate) : run_info(info);
 }
 
 }  // namespace

@@ -18,7 +18,8 @@ std::string temporary_name(const std::string& target) {
   static std::atomic<unsigned> counter{0};
   const fs::path p(target);
   // Keep the extension last: OpenMesh and CGAL writers pick the format from it.
-  const std::string tag = ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const std::string tag =
+      ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   return (p.parent_path() / (p.stem().string() + tag + p.extension().string())).string();
 }
 
@@ -41,7 +42,8 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write) {
   AtomicFile file(path);
   {
     std::ofstream out(file.temp_path(), std::ios::binary);

@@ -90,8 +90,8 @@ class Parser {
 
   void expect_fields(const Line& line, std::size_t n, const char* form) const {
     if (line.tokens.size() != n)
-      fail(line, "expected '" + std::string(form) + "', got " +
-                     std::to_string(line.tokens.size()) + " fields");
+      fail(line, "expected '" + std::string(form) + "', got " + std::to_string(line.tokens.size()) +
+                     " fields");
   }
 
   MedialAtom atom(const Line& line, std::size_t first) const {
@@ -153,16 +153,16 @@ class Parser {
         expect_fields(line, 4, "f i j k");
         if (static_cast<long>(s.faces.size()) == nf)
           fail(line, "more 'f' lines than the header's nf = " + std::to_string(nf));
-        s.faces.push_back({index(line, 1, nv, "face"), index(line, 2, nv, "face"),
-                           index(line, 3, nv, "face")});
+        s.faces.push_back(
+            {index(line, 1, nv, "face"), index(line, 2, nv, "face"), index(line, 3, nv, "face")});
       } else {
         fail(line, "unknown record '" + tag + "' (expected v, e or f)");
       }
     }
     auto check_count = [&](const char* what, std::size_t found, long announced) {
       if (static_cast<long>(found) != announced)
-        throw InvalidInput(name_ + ": header announces " + std::to_string(announced) + " " +
-                           what + ", found " + std::to_string(found));
+        throw InvalidInput(name_ + ": header announces " + std::to_string(announced) + " " + what +
+                           ", found " + std::to_string(found));
     };
     check_count("atoms ('v' lines)", s.atoms.size(), nv);
     check_count("edges ('e' lines)", s.edges.size(), ne);
@@ -195,8 +195,7 @@ void validate(const MedialSurface& s) {
     for (int j = 0; j < k; ++j)
       if (idx[j] < 0 || idx[j] >= n)
         throw InvalidInput(std::string(what) + " " + std::to_string(which) + ": index " +
-                           std::to_string(idx[j]) + " out of range [0, " + std::to_string(n) +
-                           ")");
+                           std::to_string(idx[j]) + " out of range [0, " + std::to_string(n) + ")");
   };
   for (std::size_t e = 0; e < s.edges.size(); ++e) check(s.edges[e].data(), 2, "edge", e);
   for (std::size_t f = 0; f < s.faces.size(); ++f) check(s.faces[f].data(), 3, "face", f);

@@ -71,15 +71,17 @@ Mesh mesh_from_manifold_soup(const PolygonSoup& soup, const std::string& name) {
   mesh.reserve(soup.points.size(), corners / 2, soup.faces.size());
   std::vector<Mesh::VertexHandle> handles;
   handles.reserve(soup.points.size());
-  for (const auto& p : soup.points) handles.push_back(mesh.add_vertex(Mesh::Point(p.x(), p.y(), p.z())));
+  for (const auto& p : soup.points)
+    handles.push_back(mesh.add_vertex(Mesh::Point(p.x(), p.y(), p.z())));
   std::vector<Mesh::VertexHandle> loop;
   for (std::size_t f = 0; f < soup.faces.size(); ++f) {
     loop.clear();
     for (int v : soup.faces[f]) loop.push_back(handles[v]);
     if (!mesh.add_face(loop).is_valid()) {
       const MeshTopology t = mesh_topology(soup);
-      throw TopologyError(name + ": face " + std::to_string(f) + " was refused by the half-edge mesh: " +
-                          (t.first_problem.empty() ? "the soup is an oriented manifold" : t.first_problem));
+      throw TopologyError(
+          name + ": face " + std::to_string(f) + " was refused by the half-edge mesh: " +
+          (t.first_problem.empty() ? "the soup is an oriented manifold" : t.first_problem));
     }
   }
   return mesh;

@@ -52,7 +52,9 @@ class OffParser {
     for (long f = 0; f < nf; ++f) {
       if (!next_line()) fail_eof(std::to_string(nf) + " faces, found " + std::to_string(f));
       const long k = integer(0, "face size");
-      if (k < 3) fail("face " + std::to_string(f) + " has " + std::to_string(k) + " vertices (3 or more needed)");
+      if (k < 3)
+        fail("face " + std::to_string(f) + " has " + std::to_string(k) +
+             " vertices (3 or more needed)");
       if (static_cast<long>(tokens_.size()) < k + 1)
         fail("face " + std::to_string(f) + " announces " + std::to_string(k) + " vertices, lists " +
              std::to_string(tokens_.size() - 1));
@@ -179,18 +181,18 @@ void write_ply(std::ostream& out, const PolygonSoup& soup) {
 void write_stl(std::ostream& out, const PolygonSoup& soup) {
   out << "solid mesh\n";
   for (const auto& t : fan_triangles(soup).corners) {
-      const Eigen::Vector3d &a = soup.points[t[0]], &b = soup.points[t[1]], &c = soup.points[t[2]];
-      const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
-      out << "facet normal ";
-      write_vertex(out, n.allFinite() ? n : Eigen::Vector3d::Zero());
-      out << "\n outer loop\n";
-      for (const Eigen::Vector3d* p : {&a, &b, &c}) {
-        out << "  vertex ";
-        write_vertex(out, *p);
-        out << '\n';
-      }
-      out << " endloop\nendfacet\n";
+    const Eigen::Vector3d &a = soup.points[t[0]], &b = soup.points[t[1]], &c = soup.points[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+    out << "facet normal ";
+    write_vertex(out, n.allFinite() ? n : Eigen::Vector3d::Zero());
+    out << "\n outer loop\n";
+    for (const Eigen::Vector3d* p : {&a, &b, &c}) {
+      out << "  vertex ";
+      write_vertex(out, *p);
+      out << '\n';
     }
+    out << " endloop\nendfacet\n";
+  }
   out << "endsolid mesh\n";
 }
 

@@ -23,8 +23,7 @@ bool read_polygon_soup_with_cgal(const std::string& path, PolygonSoup& soup) {
   for (const auto& poly : polygons) {
     std::vector<int> face;
     face.reserve(poly.size());
-    for (std::size_t v : poly)
-      face.push_back(v < points.size() ? static_cast<int>(v) : -1);
+    for (std::size_t v : poly) face.push_back(v < points.size() ? static_cast<int>(v) : -1);
     soup.faces.push_back(std::move(face));
   }
   return true;

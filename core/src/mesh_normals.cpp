@@ -20,7 +20,8 @@ Eigen::Vector3d face_normal(const PolygonSoup& soup, int face) {
   const Eigen::Vector3d n = newell_vector(soup, face);
   double longest = 0.0;  // squared, as the area
   for (std::size_t i = 0; i < f.size(); ++i)
-    longest = std::max(longest, (soup.points[f[(i + 1) % f.size()]] - soup.points[f[i]]).squaredNorm());
+    longest =
+        std::max(longest, (soup.points[f[(i + 1) % f.size()]] - soup.points[f[i]]).squaredNorm());
   if (!(n.norm() > 1e-12 * longest)) return Eigen::Vector3d::Zero();
   return n.normalized();
 }
@@ -46,7 +47,8 @@ std::vector<Eigen::Vector3d> vertex_normals(const PolygonSoup& soup, NormalWeigh
     for (std::size_t i = 0; i < soup.faces[f].size(); ++i)
       sum[soup.faces[f][i]] += corner_weight(soup, face, static_cast<int>(i), n, weighting) * n;
   }
-  for (auto& v : sum) v = v.norm() > 1e-12 ? Eigen::Vector3d(v.normalized()) : Eigen::Vector3d::Zero();
+  for (auto& v : sum)
+    v = v.norm() > 1e-12 ? Eigen::Vector3d(v.normalized()) : Eigen::Vector3d::Zero();
   return sum;
 }
 

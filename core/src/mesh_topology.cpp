@@ -10,8 +10,8 @@ namespace {
 
 /// One directed use of an undirected edge by a face.
 struct EdgeUse {
-  int lo, hi;        // vertex indices, lo < hi
-  bool forward;      // the face runs lo -> hi
+  int lo, hi;    // vertex indices, lo < hi
+  bool forward;  // the face runs lo -> hi
   std::size_t face;
   std::size_t corner_lo, corner_hi;  // global corner ids of lo and hi in that face
   bool operator<(const EdgeUse& o) const {
@@ -78,8 +78,7 @@ MeshTopology mesh_topology(const PolygonSoup& soup) {
       fans.unite(uses[i].corner_hi, uses[i + 1].corner_hi);
     } else {
       ++t.nonmanifold_edges;
-      note(edge_name(uses[i].lo, uses[i].hi) + " is shared by " + std::to_string(count) +
-           " faces");
+      note(edge_name(uses[i].lo, uses[i].hi) + " is shared by " + std::to_string(count) + " faces");
     }
     i = j;
   }
@@ -110,7 +109,8 @@ MeshTopology mesh_topology(const PolygonSoup& soup) {
   t.closed = t.boundary_edges == 0 && t.faces > 0;
   t.manifold = t.nonmanifold_edges == 0 && t.nonmanifold_vertices == 0;
   t.oriented = t.manifold && t.misoriented_edges == 0;
-  if (t.closed && t.oriented) t.genus = static_cast<int>((2 * static_cast<long>(t.components) - t.euler) / 2);
+  if (t.closed && t.oriented)
+    t.genus = static_cast<int>((2 * static_cast<long>(t.components) - t.euler) / 2);
   return t;
 }
 

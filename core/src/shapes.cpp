@@ -39,8 +39,7 @@ void icosahedron(std::vector<Eigen::Vector3d>& v, std::vector<std::array<int, 3>
 
 void check_torus(int ring, int tube, double major, double minor) {
   if (ring < 3 || tube < 3) throw InvalidInput("torus: ring and tube need at least 3 samples");
-  if (!(minor > 0) || !(major > minor))
-    throw InvalidInput("torus: need 0 < minor < major radius");
+  if (!(minor > 0) || !(major > minor)) throw InvalidInput("torus: need 0 < minor < major radius");
 }
 
 /// Grid torus with tube radius r(u, v); both angles sampled uniformly from 0.
@@ -116,9 +115,11 @@ PolygonSoup make_torus(int ring, int tube, double major, double minor) {
 PolygonSoup make_bumpy_torus(int ring, int tube, double major, double minor, double amplitude,
                              int bumps_ring, int bumps_tube) {
   check_torus(ring, tube, major, minor);
-  if (!(amplitude >= 0 && amplitude < 1)) throw InvalidInput("bumpy torus: need 0 <= amplitude < 1");
+  if (!(amplitude >= 0 && amplitude < 1))
+    throw InvalidInput("bumpy torus: need 0 <= amplitude < 1");
   if (!(major > minor * (1 + amplitude)))
-    throw InvalidInput("bumpy torus: the bumps would cross the axis (major <= minor * (1 + amplitude))");
+    throw InvalidInput(
+        "bumpy torus: the bumps would cross the axis (major <= minor * (1 + amplitude))");
   return grid_torus(ring, tube, major, [=](double u, double v) {
     return minor * (1 + amplitude * std::sin(bumps_ring * u) * std::sin(bumps_tube * v));
   });
@@ -128,7 +129,8 @@ PolygonSoup make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   if (!(lo.array() < hi.array()).all()) throw InvalidInput("box: need lo < hi componentwise");
   PolygonSoup soup;
   for (int k = 0; k < 8; ++k)
-    soup.points.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+    soup.points.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
+                             k & 4 ? hi.z() : lo.z());
   soup.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   return soup;
 }

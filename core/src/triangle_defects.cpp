@@ -28,8 +28,8 @@ using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 /// percentile of the boxes' largest sides; each box is listed in the cells it overlaps (one
 /// over more than 64 cells is tested against every box instead), and an overlapping pair is
 /// reported only in the cell holding the low corner of the two boxes' intersection, so once.
-std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Eigen::AlignedBox3d>& face_boxes,
-                                                  const std::vector<int>& ids) {
+std::vector<std::array<int, 2>> overlapping_pairs(
+    const std::vector<Eigen::AlignedBox3d>& face_boxes, const std::vector<int>& ids) {
   std::vector<std::array<int, 2>> out;
   if (ids.size() < 2) return out;
   std::vector<double> extent(ids.size());
@@ -43,12 +43,16 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Eigen::Align
   };
   std::vector<std::array<std::int64_t, 6>> range(ids.size());
   std::vector<std::size_t> start(ids.size() + 1, 0);
-  std::vector<std::size_t> big;  // over more than 64 cells (or not finite): tested against every box
+  std::vector<std::size_t>
+      big;  // over more than 64 cells (or not finite): tested against every box
   for (std::size_t b = 0; b < ids.size(); ++b) {
     auto& r = range[b];
     const bool gridded = detail::cell_range(box(b), h, &r[0], &r[3]);
     if (!gridded) big.push_back(b);
-    start[b + 1] = start[b] + (gridded ? static_cast<std::size_t>((r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1)) : 0);
+    start[b + 1] =
+        start[b] + (gridded ? static_cast<std::size_t>((r[3] - r[0] + 1) * (r[4] - r[1] + 1) *
+                                                       (r[5] - r[2] + 1))
+                            : 0);
   }
   std::vector<std::pair<std::uint64_t, int>> entries(start.back());  // (cell, box position)
   tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t b) {
@@ -57,7 +61,8 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Eigen::Align
     std::size_t e = start[b];
     for (std::int64_t i = r[0]; i <= r[3]; ++i)
       for (std::int64_t j = r[1]; j <= r[4]; ++j)
-        for (std::int64_t k = r[2]; k <= r[5]; ++k) entries[e++] = {detail::cell_key(i, j, k), static_cast<int>(b)};
+        for (std::int64_t k = r[2]; k <= r[5]; ++k)
+          entries[e++] = {detail::cell_key(i, j, k), static_cast<int>(b)};
   });
   tbb::parallel_sort(entries.begin(), entries.end());
   std::vector<std::size_t> runs;
@@ -65,23 +70,24 @@ std::vector<std::array<int, 2>> overlapping_pairs(const std::vector<Eigen::Align
     if (e == 0 || entries[e].first != entries[e - 1].first) runs.push_back(e);
   runs.push_back(entries.size());
   tbb::enumerable_thread_specific<std::vector<std::array<int, 2>>> found;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size() - 1, 64), [&](const tbb::blocked_range<std::size_t>& rr) {
-    auto& mine = found.local();
-    for (std::size_t r = rr.begin(); r != rr.end(); ++r) {
-      const std::uint64_t here = entries[runs[r]].first;
-      for (std::size_t x = runs[r]; x < runs[r + 1]; ++x)
-        for (std::size_t y = x + 1; y < runs[r + 1]; ++y) {
-          const std::size_t bx = entries[x].second, by = entries[y].second;
-          if (!box(bx).intersects(box(by))) continue;
-          // The overlap's low corner lies in both boxes' cell ranges: its cell is one of theirs.
-          std::int64_t c[3];
-          for (int a = 0; a < 3; ++a)
-            c[a] = std::max(range[bx][a], range[by][a]);
-          const std::uint64_t low = detail::cell_key(c[0], c[1], c[2]);
-          if (low == here) mine.push_back(pair_of(bx, by));
-        }
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size() - 1, 64),
+                    [&](const tbb::blocked_range<std::size_t>& rr) {
+                      auto& mine = found.local();
+                      for (std::size_t r = rr.begin(); r != rr.end(); ++r) {
+                        const std::uint64_t here = entries[runs[r]].first;
+                        for (std::size_t x = runs[r]; x < runs[r + 1]; ++x)
+                          for (std::size_t y = x + 1; y < runs[r + 1]; ++y) {
+                            const std::size_t bx = entries[x].second, by = entries[y].second;
+                            if (!box(bx).intersects(box(by))) continue;
+                            // The overlap's low corner lies in both boxes' cell ranges: its cell is
+                            // one of theirs.
+                            std::int64_t c[3];
+                            for (int a = 0; a < 3; ++a) c[a] = std::max(range[bx][a], range[by][a]);
+                            const std::uint64_t low = detail::cell_key(c[0], c[1], c[2]);
+                            if (low == here) mine.push_back(pair_of(bx, by));
+                          }
+                      }
+                    });
   tbb::parallel_for(std::size_t(0), big.size(), [&](std::size_t i) {
     auto& mine = found.local();
     const std::size_t bx = big[i];
@@ -171,16 +177,20 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
   if (subset) {
     auto cgal_box = [&](int f) {
       const auto& b = box[f];
-      return Box(CGAL::Bbox_3(b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(), b.max().z()), f);
+      return Box(CGAL::Bbox_3(b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(),
+                              b.max().z()),
+                 f);
     };
     std::vector<Box> boxes, chosen;
     for (int f : kept) {
       boxes.push_back(cgal_box(f));
       if (in_subset[f]) chosen.push_back(cgal_box(f));
     }
-    CGAL::box_intersection_d(chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-      if (x.info() != y.info()) candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
-    });
+    CGAL::box_intersection_d(
+        chosen.begin(), chosen.end(), boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+          if (x.info() != y.info())
+            candidates.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
+        });
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   } else {
@@ -199,7 +209,9 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
 
 }  // namespace
 
-TriangleDefects find_triangle_defects(const PolygonSoup& soup) { return find_defects(soup, nullptr); }
+TriangleDefects find_triangle_defects(const PolygonSoup& soup) {
+  return find_defects(soup, nullptr);
+}
 
 TriangleDefects find_triangle_defects(const PolygonSoup& soup, const std::vector<int>& subset) {
   return find_defects(soup, &subset);

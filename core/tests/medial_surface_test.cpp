@@ -1,7 +1,9 @@
-#include "core/errors.h"
 #include "core/medial_surface.h"
+#include "core/errors.h"
 
 #include <gtest/gtest.h>
+
+#include <utility>
 
 #include <cmath>
 #include <cstdio>
@@ -76,27 +78,27 @@ TEST(MedialSurface, RoundTripIsExact) {
 }
 
 TEST(MedialSurface, RefusesBadInputWithFileLineAndReason) {
-  EXPECT_EQ(parse_error(""), "test.ma: empty file, no atoms");
-  EXPECT_EQ(parse_error("# only a comment\n\n"), "test.ma: empty file, no atoms");
-  EXPECT_EQ(parse_error("0 0 0\n"), "test.ma: no atoms");
-  EXPECT_EQ(parse_error("2 0 0\nv 0 0 0 1\n"),
-            "test.ma: header announces 2 atoms ('v' lines), found 1");
-  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 1\nv 1 0 0 1\n"),
-            "test.ma:3: more 'v' lines than the header's nv = 1");
-  EXPECT_EQ(parse_error("1 0 0\nv 0 zero 0 1\n"), "test.ma:2: y is not a number: 'zero'");
-  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 nan\n"), "test.ma:2: radius must be finite, got nan");
-  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 inf\n"), "test.ma:2: radius must be finite, got inf");
-  EXPECT_EQ(parse_error("1 0 0\nv inf 0 0 1\n"), "test.ma:2: centre must be finite");
-  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0 0\n"), "test.ma:2: radius must be > 0, got 0");
-  EXPECT_EQ(parse_error("1 0 0\n\nv 0 0 0 -0.3\n"), "test.ma:3: radius must be > 0, got -0.3");
-  EXPECT_EQ(parse_error("2 1 0\nv 0 0 0 1\nv 1 0 0 1\ne 0 2\n"),
-            "test.ma:4: edge index 2 out of range [0, 2)");
-  EXPECT_EQ(parse_error("3 0 1\nv 0 0 0 1\nv 1 0 0 1\nv 2 0 0 1\nf 0 1 -1\n"),
-            "test.ma:5: face index -1 out of range [0, 3)");
-  EXPECT_EQ(parse_error("1 0 0\nv 0 0 0\n"), "test.ma:2: expected 'v x y z r', got 4 fields");
-  EXPECT_EQ(parse_error("1 0 0\nx 0 0 0 1\n"), "test.ma:2: unknown record 'x' (expected v, e or f)");
-  EXPECT_EQ(parse_error("0 0 0 1\n1 1 1\n"),
-            "test.ma:2: expected a header 'nv ne nf' or an atom 'x y z r', got 3 fields");
+  const std::pair<const char*, const char*> cases[] = {
+      {"", "test.ma: empty file, no atoms"},
+      {"# only a comment\n\n", "test.ma: empty file, no atoms"},
+      {"0 0 0\n", "test.ma: no atoms"},
+      {"2 0 0\nv 0 0 0 1\n", "test.ma: header announces 2 atoms ('v' lines), found 1"},
+      {"1 0 0\nv 0 0 0 1\nv 1 0 0 1\n", "test.ma:3: more 'v' lines than the header's nv = 1"},
+      {"1 0 0\nv 0 zero 0 1\n", "test.ma:2: y is not a number: 'zero'"},
+      {"1 0 0\nv 0 0 0 nan\n", "test.ma:2: radius must be finite, got nan"},
+      {"1 0 0\nv 0 0 0 inf\n", "test.ma:2: radius must be finite, got inf"},
+      {"1 0 0\nv inf 0 0 1\n", "test.ma:2: centre must be finite"},
+      {"1 0 0\nv 0 0 0 0\n", "test.ma:2: radius must be > 0, got 0"},
+      {"1 0 0\n\nv 0 0 0 -0.3\n", "test.ma:3: radius must be > 0, got -0.3"},
+      {"2 1 0\nv 0 0 0 1\nv 1 0 0 1\ne 0 2\n", "test.ma:4: edge index 2 out of range [0, 2)"},
+      {"3 0 1\nv 0 0 0 1\nv 1 0 0 1\nv 2 0 0 1\nf 0 1 -1\n",
+       "test.ma:5: face index -1 out of range [0, 3)"},
+      {"1 0 0\nv 0 0 0\n", "test.ma:2: expected 'v x y z r', got 4 fields"},
+      {"1 0 0\nx 0 0 0 1\n", "test.ma:2: unknown record 'x' (expected v, e or f)"},
+      {"0 0 0 1\n1 1 1\n",
+       "test.ma:2: expected a header 'nv ne nf' or an atom 'x y z r', got 3 fields"},
+  };
+  for (const auto& [text, message] : cases) EXPECT_EQ(parse_error(text), message) << text;
 }
 
 TEST(MedialSurface, ReadingAMissingFileIsAnIoError) {

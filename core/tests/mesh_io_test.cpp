@@ -1,5 +1,5 @@
-#include "core/errors.h"
 #include "core/mesh_io.h"
+#include "core/errors.h"
 #include "core/mesh_topology.h"
 #include "core/shapes.h"
 
@@ -22,8 +22,8 @@ std::string read_error(const std::string& path) {
 
 /// A small closed mesh with awkward coordinates and a quad (polygons must survive OFF/OBJ/PLY).
 mg::Mesh awkward_box() {
-  mg::PolygonSoup soup =
-      mg::make_box(Eigen::Vector3d(-1.0 / 3.0, 0.1, 1e-7), Eigen::Vector3d(2.0 / 7.0, 0.7, 12345.678901234567));
+  mg::PolygonSoup soup = mg::make_box(Eigen::Vector3d(-1.0 / 3.0, 0.1, 1e-7),
+                                      Eigen::Vector3d(2.0 / 7.0, 0.7, 12345.678901234567));
   return mg::mesh_from_soup(soup, "box");
 }
 
@@ -41,11 +41,12 @@ TEST_P(MeshRoundTrip, KeepsDoublesAndFaces) {
   for (std::size_t i = 0; i < in.points.size(); ++i) {
     // STL has no vertex list: points come back merged, in order of first use.
     const Eigen::Vector3d& original =
-        ext == ".stl" ? *std::min_element(out.points.begin(), out.points.end(),
-                                          [&](const auto& a, const auto& b) {
-                                            return (a - in.points[i]).norm() < (b - in.points[i]).norm();
-                                          })
-                      : out.points[i];
+        ext == ".stl"
+            ? *std::min_element(out.points.begin(), out.points.end(),
+                                [&](const auto& a, const auto& b) {
+                                  return (a - in.points[i]).norm() < (b - in.points[i]).norm();
+                                })
+            : out.points[i];
     EXPECT_LE((in.points[i] - original).norm(), 1e-12 * original.norm()) << ext;
   }
   const mg::MeshTopology t = mg::mesh_topology(in);
@@ -82,15 +83,19 @@ TEST(MeshIo, OffVariantsParse) {
 TEST(MeshIo, RefusesBadFilesWithNameLineAndReason) {
   mg_test::TempDir dir("mesh_io");
   const std::string tet = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
-  EXPECT_EQ(read_error(dir.file("missing.off")), dir.file("missing.off") + ": cannot open for reading");
-  EXPECT_EQ(read_error(dir.write("a.xyz", "")), dir.file("a.xyz") + ": unknown mesh extension (expected .off, .obj, .ply or .stl)");
+  EXPECT_EQ(read_error(dir.file("missing.off")),
+            dir.file("missing.off") + ": cannot open for reading");
+  EXPECT_EQ(read_error(dir.write("a.xyz", "")),
+            dir.file("a.xyz") + ": unknown mesh extension (expected .off, .obj, .ply or .stl)");
   EXPECT_EQ(read_error(dir.write("e.off", "")), dir.file("e.off") + ": empty file");
-  EXPECT_EQ(read_error(dir.write("h.off", "PLY\n")), dir.file("h.off") + ":1: expected an OFF header, got 'PLY'");
+  EXPECT_EQ(read_error(dir.write("h.off", "PLY\n")),
+            dir.file("h.off") + ":1: expected an OFF header, got 'PLY'");
   EXPECT_EQ(read_error(dir.write("c.off", "OFF\n4 4 6\n" + tet + "3 0 2 1\n")),
             dir.file("c.off") + ": file ends early: expected 4 faces, found 1");
   EXPECT_EQ(read_error(dir.write("n.off", "OFF\n1 0 0\n0 nan 0\n")),
             dir.file("n.off") + ":3: vertex 0 has a non-finite coordinate");
-  EXPECT_EQ(read_error(dir.write("x.off", "OFF\n1 0 0\n0 a 0\n")), dir.file("x.off") + ":3: not a number: 'a'");
+  EXPECT_EQ(read_error(dir.write("x.off", "OFF\n1 0 0\n0 a 0\n")),
+            dir.file("x.off") + ":3: not a number: 'a'");
   EXPECT_EQ(read_error(dir.write("r.off", "OFF\n4 1 0\n" + tet + "3 0 1 4\n")),
             dir.file("r.off") + ":7: face 0: vertex index 4 out of range [0, 4)");
   EXPECT_EQ(read_error(dir.write("d.off", "OFF\n4 1 0\n" + tet + "3 0 1 1\n")),
@@ -104,16 +109,21 @@ TEST(MeshIo, RefusesBadFilesWithNameLineAndReason) {
 TEST(MeshIo, NonManifoldInputIsRefusedNamingTheElement) {
   mg_test::TempDir dir("mesh_io");
   // Three triangles on one edge (0, 1).
-  const auto fin = dir.write("fin.off",
-                             "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+  const auto fin = dir.write(
+      "fin.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
   EXPECT_EQ(read_error(fin), fin + ": edge (0, 1) is shared by 3 faces");
   // Two triangles touching at vertex 0 only (a bow tie).
-  const auto bowtie = dir.write("bow.off",
-                                "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n");
-  EXPECT_EQ(read_error(bowtie), bowtie + ": vertex 0 is non-manifold (its faces form separate fans)");
+  const auto bowtie =
+      dir.write("bow.off", "OFF\n5 2 0\n0 0 0\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n3 0 1 2\n3 0 3 4\n");
+  EXPECT_EQ(read_error(bowtie),
+            bowtie + ": vertex 0 is non-manifold (its faces form separate fans)");
   // Inconsistent orientation.
-  const auto flip = dir.write("flip.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 2 3\n");
-  EXPECT_EQ(read_error(flip), flip + ": faces 0 and 1 run along edge (1, 2) in the same direction (inconsistent orientation)");
+  const auto flip =
+      dir.write("flip.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 2 3\n");
+  EXPECT_EQ(
+      read_error(flip),
+      flip +
+          ": faces 0 and 1 run along edge (1, 2) in the same direction (inconsistent orientation)");
 }
 
 TEST(MeshIo, WritingToAMissingFolderFailsWithoutAFile) {

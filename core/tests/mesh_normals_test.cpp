@@ -1,6 +1,6 @@
 // Face and vertex normals of polygon soups (mesh_normals.h), on shapes solvable by hand.
-#include "core/errors.h"
 #include "core/mesh_normals.h"
+#include "core/errors.h"
 #include "core/shapes.h"
 
 #include <gtest/gtest.h>
@@ -27,10 +27,12 @@ TEST(MeshNormals, DegenerateFacesHaveNoNormalAndNoWeight) {
   soup.points = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
   soup.faces = {{0, 1, 2}, {0, 1, 3}};
   EXPECT_TRUE(mg::face_normal(soup, 0).isZero(0));
-  EXPECT_EQ(mg::corner_weight(soup, 0, 1, mg::face_normal(soup, 0), mg::NormalWeighting::angle), 0.0);
+  EXPECT_EQ(mg::corner_weight(soup, 0, 1, mg::face_normal(soup, 0), mg::NormalWeighting::angle),
+            0.0);
   EXPECT_NEAR(mg::corner_weight(soup, 1, 0, mg::face_normal(soup, 1), mg::NormalWeighting::angle),
               M_PI / 2, 1e-15);
-  EXPECT_NEAR(mg::corner_weight(soup, 1, 0, mg::face_normal(soup, 1), mg::NormalWeighting::area), 0.5, 1e-15);
+  EXPECT_NEAR(mg::corner_weight(soup, 1, 0, mg::face_normal(soup, 1), mg::NormalWeighting::area),
+              0.5, 1e-15);
   const auto n = mg::vertex_normals(soup);
   EXPECT_TRUE(n[2].isZero(0));  // only on the degenerate face
   EXPECT_NEAR((n[3] - Eigen::Vector3d::UnitZ()).norm(), 0.0, 1e-15);

@@ -45,7 +45,8 @@ TEST(MeshTopology, OpenBoxHasABoundaryAndNoGenus) {
 TEST(MeshTopology, TwoTetrahedraSharingAVertexAreNonManifold) {
   mg::PolygonSoup s;
   s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
-  s.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
+  s.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3},
+             {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
   const auto t = mg::mesh_topology(s);
   EXPECT_TRUE(t.closed);
   EXPECT_FALSE(t.manifold);

@@ -1,21 +1,16 @@
+#include "core/shapes.h"
 #include "core/errors.h"
 #include "core/mesh_topology.h"
-#include "core/shapes.h"
 
 #include <gtest/gtest.h>
+
+#include "test_util.h"
 
 #include <cmath>
 
 namespace {
 
-/// Signed volume enclosed by a closed triangle soup: positive when faces point outward.
-double signed_volume(const mg::PolygonSoup& s) {
-  double v = 0;
-  for (const auto& f : s.faces)
-    for (std::size_t i = 1; i + 1 < f.size(); ++i)
-      v += s.points[f[0]].dot(s.points[f[i]].cross(s.points[f[i + 1]])) / 6.0;
-  return v;
-}
+using mg_test::signed_volume;
 
 constexpr double kPi = 3.14159265358979323846;
 

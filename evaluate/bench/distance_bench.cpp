@@ -1,8 +1,8 @@
 // Benchmark of `evaluate distance`: two ~100k-face meshes at the default sample count
 // (max(1e6, 10 (V_a + V_b)) per side). Target: under 2 s on 2 cores.
-//   build/bin/evaluate_bench --benchmark_filter=Distance --benchmark_repetitions=3
-#include "evaluate/mesh_distance.h"
+//   build/bench/evaluate_bench --benchmark_filter=Distance --benchmark_repetitions=3
 #include "core/shapes.h"
+#include "evaluate/mesh_distance.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>

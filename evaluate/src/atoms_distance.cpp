@@ -1,7 +1,7 @@
 #include "evaluate/atoms_distance.h"
 
-#include "evaluate/mesh_distance.h"
 #include "core/errors.h"
+#include "evaluate/mesh_distance.h"
 
 #include <tbb/parallel_for.h>
 
@@ -39,8 +39,9 @@ AtomsDistance atoms_distance(const PolygonSoup& mesh, const MedialSurface& atoms
   on_g.weights.assign(on_g.points.size(), 1.0);
   const std::size_t stride = std::max<std::size_t>(1, on_mesh.points.size() / 20000);
   std::vector<Eigen::Vector3d> projected((on_mesh.points.size() + stride - 1) / stride);
-  tbb::parallel_for(std::size_t(0), projected.size(),
-                    [&](std::size_t k) { projected[k] = shape.closest_point(on_mesh.points[k * stride]); });
+  tbb::parallel_for(std::size_t(0), projected.size(), [&](std::size_t k) {
+    projected[k] = shape.closest_point(on_mesh.points[k * stride]);
+  });
   r.g_unbiased = on_g.points.size();
   on_g.points.insert(on_g.points.end(), projected.begin(), projected.end());
   on_g.weights.resize(on_g.points.size(), 0.0);

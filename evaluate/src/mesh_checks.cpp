@@ -31,8 +31,8 @@ MeshCheck check_mesh(const PolygonSoup& soup) {
   const TriangleDefects d = find_triangle_defects(triangles);
   c.degenerate_triangles = d.degenerate_faces.size();
   if (!d.degenerate_faces.empty())
-    c.first_degenerate =
-        "face " + std::to_string(fan.face[d.degenerate_faces.front()]) + " is degenerate (collinear corners)";
+    c.first_degenerate = "face " + std::to_string(fan.face[d.degenerate_faces.front()]) +
+                         " is degenerate (collinear corners)";
 
   // Smallest angle over the triangles that are not degenerate.
   double min_angle = 180;

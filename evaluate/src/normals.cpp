@@ -1,9 +1,9 @@
 #include "evaluate/normals.h"
 
+#include "core/errors.h"
+#include "core/mesh_normals.h"
 #include "evaluate/distances.h"
 #include "evaluate/mesh_distance.h"
-#include "core/mesh_normals.h"
-#include "core/errors.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -55,7 +55,8 @@ NormalDeviation normal_deviation(const PolygonSoup& mesh, const PolygonSoup& ref
   sample_triangles(reference, ref_tris, 1, opt.seed, reference_name);
   const TriangleIndex index(reference, reference_name);
   const std::vector<Eigen::Vector3d> ref_vertex_normals =
-      opt.smooth_reference ? vertex_normals(reference, NormalWeighting::angle) : std::vector<Eigen::Vector3d>{};
+      opt.smooth_reference ? vertex_normals(reference, NormalWeighting::angle)
+                           : std::vector<Eigen::Vector3d>{};
 
   const std::size_t n = samples.points.size();
   std::vector<double> angle(n, -1.0);  // -1: reference normal undefined

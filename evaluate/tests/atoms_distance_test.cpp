@@ -1,6 +1,6 @@
 #include "evaluate/atoms_distance.h"
-#include "garbing/garb.h"
 #include "core/shapes.h"
+#include "garbing/garb.h"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,18 @@
 // Baselines on one atom (skin surface, union of balls, OpenVDB), voxel searches, timing.
 #include "evaluate/baselines.h"
+#include "core/errors.h"
+#include "core/shapes.h"
 #include "evaluate/mesh_checks.h"
 #include "evaluate/timing.h"
 #include "evaluate/vdb_mesh.h"
-#include "core/errors.h"
-#include "core/shapes.h"
 
 #include <gtest/gtest.h>
+
+#include "test_util.h"
+
 #include <tbb/global_control.h>
+#include <chrono>
+#include <thread>
 
 #include <cmath>
 
@@ -28,14 +33,7 @@ mg::MedialSurface one_atom() {
   return s;
 }
 
-/// Signed volume enclosed by a closed triangle mesh: > 0 when faces are CCW from outside.
-double signed_volume(const mg::PolygonSoup& soup) {
-  double v = 0;
-  for (const auto& f : soup.faces)
-    for (std::size_t i = 1; i + 1 < f.size(); ++i)
-      v += soup.points[f[0]].dot(soup.points[f[i]].cross(soup.points[f[i + 1]])) / 6;
-  return v;
-}
+using mg_test::signed_volume;
 
 /// Largest | |p - centre| - r | over the vertices.
 double radial_error(const mg::PolygonSoup& soup) {
@@ -171,12 +169,15 @@ TEST(Baselines, VoxelSearchHitsAHausdorffDistance) {
 
 TEST(Timing, ReportsMinMedianMax) {
   int calls = 0;
-  const ev::StageTiming t = ev::time_stage(3, [&] { ++calls; });
+  const ev::StageTiming t = ev::time_stage(3, [&] {
+    ++calls;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  });
   EXPECT_EQ(calls, 3);
   ASSERT_EQ(t.seconds.size(), 3u);
   EXPECT_LE(t.min, t.median);
   EXPECT_LE(t.median, t.max);
-  EXPECT_GE(t.min, 0.0);
+  EXPECT_GE(t.min, 0.002);  // each run slept 2 ms
   EXPECT_THROW(ev::time_stage(0, [] {}), mg::InvalidInput);
   EXPECT_THROW(ev::time_stage(2, [] { throw mg::InvalidInput("x"); }), mg::InvalidInput);
 }

@@ -1,8 +1,8 @@
 // The distance core (distances.h) and its mesh front end (mesh_distance.h).
 #include "evaluate/distances.h"
-#include "evaluate/mesh_distance.h"
 #include "core/errors.h"
 #include "core/shapes.h"
+#include "evaluate/mesh_distance.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -1,8 +1,8 @@
 // Normal deviation (normals.h).
 #include "evaluate/normals.h"
-#include "evaluate/baselines.h"
 #include "core/errors.h"
 #include "core/shapes.h"
+#include "evaluate/baselines.h"
 
 #include <gtest/gtest.h>
 

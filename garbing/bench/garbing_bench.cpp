@@ -51,14 +51,21 @@ void whole_garbing(benchmark::State& state) {
 
 BENCHMARK(target_shape)->Unit(benchmark::kMillisecond)->UseRealTime();
 // Argument: 1 = wrap G (cones rt, the default), 0 = the balls alone.
-BENCHMARK(octree_and_m1)->ArgName("cones")->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(octree_and_m1)
+    ->ArgName("cones")
+    ->Arg(1)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(whole_garbing)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return mg::bench::run_benchmarks(argc, argv, "garbing_bench", "--atoms", [](const std::string& path) {
-    if (path.empty()) throw mg::InvalidInput("usage: garbing_bench --atoms FILE.ma [benchmark options]");
-    g_atoms = mg::read_medial_surface(path);
-  });
+  return mg::bench::run_benchmarks(
+      argc, argv, "garbing_bench", "--atoms", [](const std::string& path) {
+        if (path.empty())
+          throw mg::InvalidInput("usage: garbing_bench --atoms FILE.ma [benchmark options]");
+        g_atoms = mg::read_medial_surface(path);
+      });
 }

@@ -1,14 +1,14 @@
 // garb: medial surface garbing. Atoms in, closed triangle mesh out.
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
-//        [--no-criterion N ...] [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C] [--spheres-only]
-//        [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N] [--max-gap F] [--stats FILE.json]
-//        [--threads N]
+//        [--no-criterion N ...] [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C]
+//        [--spheres-only] [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N]
+//        [--max-gap F] [--stats FILE.json] [--threads N]
+#include "garbing/garb.h"
 #include "core/cli_main.h"
 #include "core/medial_surface.h"
 #include "core/mesh_io.h"
 #include "core/mesh_topology.h"
 #include "core/timer.h"
-#include "garbing/garb.h"
 
 #include <sys/resource.h>
 
@@ -20,17 +20,18 @@ namespace {
 namespace gb = mg::garbing;
 using Json = nlohmann::ordered_json;
 
-/// The --stats report: the octree's census, M1, M2 and their statistics, memory and seconds.
-Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const gb::Garbing& r,
-                const gb::GarbOptions& opt, const std::vector<int>& criteria_off,
-                const std::string& cone_source, double seconds_read, double seconds_write,
-                double seconds_total) {
-  const gb::Octree& tree = r.tree;
-  const mg::MeshTopology topo = mg::mesh_topology(mg::soup_from_mesh(r.m1.mesh));
-  const mg::MeshTopology topo2 = mg::mesh_topology(mg::soup_from_mesh(r.m2.mesh));
-  const gb::RefineStats& s = r.m2.stats;
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
+/// The keys M1 and M2 share: size and genus.
+Json mesh_json(const mg::Mesh& mesh, const mg::MeshTopology& topo) {
+  return {{"vertices", mesh.n_vertices()},
+          {"faces", mesh.n_faces()},
+          {"components", topo.components},
+          {"euler", topo.euler},
+          {"genus", topo.genus}};
+}
+
+/// The octree: its frame and depths, the splits, and the leaves per level (active ones, and
+/// those active through a cone's crease fill only).
+Json octree_json(const gb::Octree& tree, const std::vector<int>& criteria_off) {
   std::map<int, long> per_level, active_per_level;
   long active = 0, crease_only = 0;
   for (int c : tree.leaves) {
@@ -41,14 +42,10 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
       ++active_per_level[tree.cells[c].level];
     }
   }
-  std::vector<int> owners;
-  for (const auto& f : r.m1.faces) owners.push_back(f.owner);
-  std::sort(owners.begin(), owners.end());
-  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
-
+  Json levels = Json::array();
+  for (const auto& [level, n] : per_level)
+    levels.push_back({{"level", level}, {"leaves", n}, {"active", active_per_level[level]}});
   Json j;
-  j["input"] = input;
-  j["atoms"] = atoms.atoms.size();
   j["rc"] = tree.rc;
   j["root_side"] = tree.root_side;
   j["min_depth"] = tree.min_depth;
@@ -57,53 +54,76 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
   j["hit_max_depth"] = tree.hit_max_depth;
   j["criteria_off"] = criteria_off;
   j["splits_by_criterion"] = tree.splits;
-  Json levels = Json::array();
-  for (const auto& [level, n] : per_level)
-    levels.push_back({{"level", level}, {"leaves", n}, {"active", active_per_level[level]}});
   j["leaves_per_level"] = levels;
   j["leaves"] = tree.leaves.size();
   j["active_leaves"] = active;
   j["crease_leaves"] = crease_only;  // active through a cone's crease fill only
+  return j;
+}
+
+/// M2: the mesh, then G's cones and the refinement options, then what migration, gap
+/// splitting and fold repair did.
+Json m2_json(const gb::Garbing& r, const gb::GarbOptions& opt, const std::string& cone_source) {
+  const mg::MeshTopology topo = mg::mesh_topology(mg::soup_from_mesh(r.m2.mesh));
+  const gb::RefineStats& s = r.m2.stats;
+  Json j = mesh_json(r.m2.mesh, topo);
+  j.update(Json{{"closed", topo.closed}, {"oriented", topo.oriented}});
+  // G's cones and the refinement options.
+  j.update(Json{{"cones", r.g.cone_count()},
+                {"cone_source", cone_source},
+                {"cone_filter", opt.cones.min_circle_ratio},
+                {"cone_collar", opt.cones.max_collar},
+                {"dual", opt.refine.dual},
+                {"subdivisions", opt.refine.subdivisions}});
+  // Migration: the vertices moved onto G, and those that fell back to the closest point.
+  j.update(Json{{"vertices_migrated", s.vertices_migrated},
+                {"fallback_zero_direction", s.fallback_zero_direction},
+                {"fallback_missed", s.fallback_missed},
+                {"fallback_too_far", s.fallback_too_far},
+                {"collapsed_digons", s.collapsed_digons}});
+  // Gap splitting.
+  j.update(Json{{"max_gap", opt.refine.max_gap},
+                {"gap_splits", s.gap_splits},
+                {"gap_splits_undone", s.gap_undone}});
+  // Fold repair: the defects before and after it, and what it moved.
+  j.update(Json{{"intersecting_pairs_before_repair", s.intersecting_before},
+                {"degenerate_before_repair", s.degenerate_before},
+                {"intersecting_pairs_after_repair", s.intersecting_after},
+                {"degenerate_after_repair", s.degenerate_after},
+                {"repaired_vertices", s.repaired_vertices},
+                {"pull_back_steps", s.pulled_back},
+                {"left_off_g_after_repair", s.left_off_g}});
+  return j;
+}
+
+/// The --stats report: the octree's census, M1, M2 and their statistics, memory and seconds.
+Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const gb::Garbing& r,
+                const gb::GarbOptions& opt, const std::vector<int>& criteria_off,
+                const std::string& cone_source, double seconds_read, double seconds_write,
+                double seconds_total) {
+  Json m1 = mesh_json(r.m1.mesh, mg::mesh_topology(mg::soup_from_mesh(r.m1.mesh)));
+  m1["hanging_corners"] = r.m1.hanging_corners;
+  m1["split_vertices"] = r.m1.split_vertices;
+  const Json m2 = m2_json(r, opt, cone_source);
+  std::vector<int> owners;
+  for (const auto& f : r.m1.faces) owners.push_back(f.owner);
+  std::sort(owners.begin(), owners.end());
+  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);  // after the topologies of M1 and M2
+
+  Json j = {{"input", input}, {"atoms", atoms.atoms.size()}};
+  j.update(octree_json(r.tree, criteria_off));
   j["boundary_leaves"] = owners.size();
-  j["m1"] = {{"vertices", r.m1.mesh.n_vertices()}, {"faces", r.m1.mesh.n_faces()},
-             {"components", topo.components},      {"euler", topo.euler},
-             {"genus", topo.genus},                {"hanging_corners", r.m1.hanging_corners},
-             {"split_vertices", r.m1.split_vertices}};
-  j["m2"] = {{"vertices", r.m2.mesh.n_vertices()},
-             {"faces", r.m2.mesh.n_faces()},
-             {"components", topo2.components},
-             {"euler", topo2.euler},
-             {"genus", topo2.genus},
-             {"closed", topo2.closed},
-             {"oriented", topo2.oriented},
-             {"cones", r.g.cone_count()},
-             {"cone_source", cone_source},
-             {"cone_filter", opt.cones.min_circle_ratio},
-             {"cone_collar", opt.cones.max_collar},
-             {"dual", opt.refine.dual},
-             {"subdivisions", opt.refine.subdivisions},
-             {"vertices_migrated", s.vertices_migrated},
-             {"fallback_zero_direction", s.fallback_zero_direction},
-             {"fallback_missed", s.fallback_missed},
-             {"fallback_too_far", s.fallback_too_far},
-             {"collapsed_digons", s.collapsed_digons},
-             {"max_gap", opt.refine.max_gap},
-             {"gap_splits", s.gap_splits},
-             {"gap_splits_undone", s.gap_undone},
-             {"intersecting_pairs_before_repair", s.intersecting_before},
-             {"degenerate_before_repair", s.degenerate_before},
-             {"intersecting_pairs_after_repair", s.intersecting_after},
-             {"degenerate_after_repair", s.degenerate_after},
-             {"repaired_vertices", s.repaired_vertices},
-             {"pull_back_steps", s.pulled_back},
-             {"left_off_g_after_repair", s.left_off_g}};
+  j["m1"] = m1;
+  j["m2"] = m2;
   j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
   j["seconds"] = {{"read", seconds_read},
                   {"octree", r.seconds.octree},
                   {"m1", r.seconds.m1},
                   {"cones", r.seconds.target_shape},
-                  {"migration", s.seconds_migration},
-                  {"repair", s.seconds_repair},
+                  {"migration", r.m2.stats.seconds_migration},
+                  {"repair", r.m2.stats.seconds_repair},
                   {"m2", r.seconds.m2},
                   {"garbing", r.seconds.total()},
                   {"write", seconds_write},
@@ -121,7 +141,8 @@ int garb_main(int argc, char** argv) {
   app.add_option("input", input, "medial surface (.ma, or x y z r lines)")->required();
   app.add_option("-o,--output", output, "output mesh M2 (.off .obj .ply .stl)")->required();
   app.add_option("--m1", m1_path, "also write the coarse mesh M1 here");
-  app.add_option("--min-depth", opt.octree.min_depth, "minimal active depth d (0 = automatic: side <= rc/8)")
+  app.add_option("--min-depth", opt.octree.min_depth,
+                 "minimal active depth d (0 = automatic: side <= rc/8)")
       ->check(mg::NonNegative);
   app.add_option("--max-depth", opt.octree.max_depth, "safety stop on the octree depth")
       ->check(CLI::Range(1, 20));
@@ -147,8 +168,9 @@ int garb_main(int argc, char** argv) {
   app.add_option("--repair-rounds", opt.refine.repair_rounds,
                  "rounds of each fold repair stage (0: no repair, folds are only counted)")
       ->check(mg::NonNegative);
-  app.add_option("--max-gap", opt.refine.max_gap,
-                 "split an edge whose midpoint is provably farther than F leaf sides from G (0: off)")
+  app.add_option(
+         "--max-gap", opt.refine.max_gap,
+         "split an edge whose midpoint is provably farther than F leaf sides from G (0: off)")
       ->check(mg::NonNegative);
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(mg::NonNegative);
@@ -172,7 +194,8 @@ int garb_main(int argc, char** argv) {
   mg::write_mesh(result.m2.mesh, output);
   const double seconds_write = write_clock.seconds();
   if (!stats_path.empty())
-    mg::write_json(stats_json(input, atoms, result, opt, off, cones, seconds_read, seconds_write, clock.seconds()),
+    mg::write_json(stats_json(input, atoms, result, opt, off, cones, seconds_read, seconds_write,
+                              clock.seconds()),
                    stats_path);
   return 0;
 }

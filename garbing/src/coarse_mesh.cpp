@@ -16,8 +16,8 @@ using Lattice = std::array<std::int64_t, 3>;
 
 /// One directed use of an M1 edge by a face loop.
 struct EdgeUse {
-  int lo, hi;       // lattice vertex ids, lo < hi
-  bool forward;     // the loop runs lo -> hi
+  int lo, hi;    // lattice vertex ids, lo < hi
+  bool forward;  // the loop runs lo -> hi
   int face;
   std::size_t corner_lo, corner_hi;  // global corner ids of lo and hi in that loop
 };
@@ -116,7 +116,8 @@ class Extractor {
   }
 
   int vertex_id(const Lattice& p) const {
-    return static_cast<int>(std::lower_bound(lattice_.begin(), lattice_.end(), p) - lattice_.begin());
+    return static_cast<int>(std::lower_bound(lattice_.begin(), lattice_.end(), p) -
+                            lattice_.begin());
   }
 
   // --- loops with hanging corners ------------------------------------------------------------
@@ -329,8 +330,8 @@ class Extractor {
   const Octree& tree_;
   const int depth_;
   CoarseMesh out_;
-  std::vector<Lattice> lattice_;          // distinct face corners, sorted
-  std::vector<std::vector<int>> loops_;   // per face: lattice vertex ids with hanging corners
+  std::vector<Lattice> lattice_;         // distinct face corners, sorted
+  std::vector<std::vector<int>> loops_;  // per face: lattice vertex ids with hanging corners
 };
 
 }  // namespace

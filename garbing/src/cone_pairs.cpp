@@ -16,9 +16,12 @@ namespace mg::garbing {
 namespace {
 
 using K = CGAL::Epick;
-using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>;
+using Vb =
+    CGAL::Triangulation_vertex_base_with_info_3<int, K,
+                                                CGAL::Regular_triangulation_vertex_base_3<K>>;
 // Hidden points are not kept: only the edges are read, and keeping them costs a list per cell.
-using Cb = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points>;
+using Cb = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>,
+                                                   CGAL::Discard_hidden_points>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 using Regular = CGAL::Regular_triangulation_3<K, Tds>;
 
@@ -48,7 +51,8 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
   std::vector<int> start(n + 2, 0), upper;
   auto each_edge = [&](auto&& f) {
     for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c) {
-      const int v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()};
+      const int v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
+                        c->vertex(3)->info()};
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) f(std::min(v[i], v[j]), std::max(v[i], v[j]));
     }
@@ -111,7 +115,8 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   // The collar limit in model units: max_collar times rc / 8, the automatic octree's leaf
   // side bound (from the atoms alone).
-  const double collar_limit = opt.max_collar > 0 ? opt.max_collar * characteristic_radius(atoms) / 8 : INFINITY;
+  const double collar_limit =
+      opt.max_collar > 0 ? opt.max_collar * characteristic_radius(atoms) / 8 : INFINITY;
   std::vector<std::array<int, 2>> pairs;
   for (const auto& [i, j] : candidates) {
     const MedialAtom& a = atoms.atoms[i];

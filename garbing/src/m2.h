@@ -58,7 +58,8 @@ struct Context {
 /// The dual of M1: one vertex at the centre of each M1 square (its locale: P of the owning
 /// leaf) and one polygon per M1 vertex, its faces in counter-clockwise order seen from
 /// outside. M1 vertices of valence 2 (pinch midpoints) give no polygon (counted).
-Polygons start_from_dual(const CoarseMesh& m1, const Context& ctx, Vertices& m2, RefineStats& stats);
+Polygons start_from_dual(const CoarseMesh& m1, const Context& ctx, Vertices& m2,
+                         RefineStats& stats);
 
 /// M1 itself (--no-dual): its vertices (locales from the leaves holding them) and its faces.
 Polygons start_from_m1(const CoarseMesh& m1, const Context& ctx, Vertices& m2);
@@ -66,7 +67,8 @@ Polygons start_from_m1(const CoarseMesh& m1, const Context& ctx, Vertices& m2);
 /// Triangulates the polygons by least total diagonal length, a diagonal already in the mesh
 /// forbidden; a polygon with no allowed triangulation is fanned from a new vertex at its
 /// centroid, moved to the closest point of G (counted).
-Triangles triangulate(const Polygons& polygons, const Context& ctx, Vertices& m2, RefineStats& stats);
+Triangles triangulate(const Polygons& polygons, const Context& ctx, Vertices& m2,
+                      RefineStats& stats);
 
 // --- migration (m2_migration.cpp) ------------------------------------------------------------
 

@@ -33,7 +33,8 @@ void triangulate_polygon(const std::vector<int>& poly, detail::EdgeSet& edges, c
 
 }  // namespace
 
-Polygons start_from_dual(const CoarseMesh& m1, const Context& ctx, Vertices& m2, RefineStats& stats) {
+Polygons start_from_dual(const CoarseMesh& m1, const Context& ctx, Vertices& m2,
+                         RefineStats& stats) {
   // Vertices: the centres of M1's squares; P from the owning leaf.
   const std::size_t n = m1.faces.size();
   m2.start.resize(n);
@@ -90,11 +91,13 @@ Polygons start_from_m1(const CoarseMesh& m1, const Context& ctx, Vertices& m2) {
   return polygons;
 }
 
-Triangles triangulate(const Polygons& polygons, const Context& ctx, Vertices& m2, RefineStats& stats) {
+Triangles triangulate(const Polygons& polygons, const Context& ctx, Vertices& m2,
+                      RefineStats& stats) {
   // Every edge of the mesh so far: the polygons' edges, then each chosen diagonal.
   detail::EdgeSet edges(m2.position.size());
   for (const auto& poly : polygons)
-    for (std::size_t i = 0; i < poly.size(); ++i) edges.insert(poly[i], poly[(i + 1) % poly.size()]);
+    for (std::size_t i = 0; i < poly.size(); ++i)
+      edges.insert(poly[i], poly[(i + 1) % poly.size()]);
   Triangles triangles;
   for (const auto& poly : polygons) triangulate_polygon(poly, edges, ctx, m2, stats, triangles);
   return triangles;

@@ -37,7 +37,8 @@ std::vector<int> involved_vertices(const TriangleDefects& d, const Triangles& tr
 /// 3. if some are still folded: they (and, round by round, their neighbours) return to their
 ///    starting point, the fold-free dual of M1.
 /// The vertices stages 2-3 moved are off G; they are counted (`left_off_g`).
-void repair_folds(const Triangles& triangles, const Context& ctx, Vertices& m2, RefineStats& stats) {
+void repair_folds(const Triangles& triangles, const Context& ctx, Vertices& m2,
+                  RefineStats& stats) {
   const Stopwatch clock;
   PolygonSoup soup = soup_of(triangles, m2);  // faces fixed; points refreshed before each check
   TriangleDefects d = find_triangle_defects(soup);
@@ -122,7 +123,8 @@ void repair_folds(const Triangles& triangles, const Context& ctx, Vertices& m2, 
     std::vector<int> involved = involved_vertices(d, triangles);
     if (round > 0) {
       const std::size_t n = involved.size();
-      for (std::size_t k = 0; k < n; ++k) involved.insert(involved.end(), ring[involved[k]].begin(), ring[involved[k]].end());
+      for (std::size_t k = 0; k < n; ++k)
+        involved.insert(involved.end(), ring[involved[k]].begin(), ring[involved[k]].end());
       std::sort(involved.begin(), involved.end());
       involved.erase(std::unique(involved.begin(), involved.end()), involved.end());
     }

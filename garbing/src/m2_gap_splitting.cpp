@@ -14,7 +14,8 @@ namespace {
 /// The triangles split by the edges with a vertex (mid[edge] >= 0): one split edge, 1-to-2
 /// through the opposite corner; two, the corner triangle and the rest by its shorter diagonal;
 /// three, 1-to-4.
-Triangles split_triangles(const Triangles& triangles, const std::vector<std::array<std::size_t, 3>>& sides,
+Triangles split_triangles(const Triangles& triangles,
+                          const std::vector<std::array<std::size_t, 3>>& sides,
                           const std::vector<int>& mid, const std::vector<Vec3>& points) {
   std::vector<std::array<int, 3>> out;
   out.reserve(triangles.size() + triangles.size() / 8);
@@ -149,10 +150,12 @@ bool split_gaps(Triangles& triangles, std::size_t fresh, const Context& ctx, Ver
   soup.points.insert(soup.points.end(), to.begin(), to.end());
   // Each pass that undoes something undoes at least one candidate: this ends.
   while (true) {
-    const std::vector<std::array<int, 3>> out = split_triangles(local, local_sides, mid, soup.points);
+    const std::vector<std::array<int, 3>> out =
+        split_triangles(local, local_sides, mid, soup.points);
     std::vector<int> touched;  // the triangles at candidate vertices
     for (std::size_t f = 0; f < out.size(); ++f)
-      if (std::any_of(out[f].begin(), out[f].end(), [&](int v) { return v >= static_cast<int>(first_new); }))
+      if (std::any_of(out[f].begin(), out[f].end(),
+                      [&](int v) { return v >= static_cast<int>(first_new); }))
         touched.push_back(static_cast<int>(f));
     soup.faces.clear();
     for (const auto& t : out) soup.faces.push_back({t[0], t[1], t[2]});

@@ -43,8 +43,9 @@ int leaf_entered(const Octree& tree, const Vec3& q, const Vec3& dir) {
   std::array<std::int64_t, 3> ijk;
   for (int k = 0; k < 3; ++k) {
     const double plane = std::round(q[k] / unit);
-    ijk[k] = std::abs(q[k] - plane * unit) <= tol ? static_cast<std::int64_t>(plane) - (dir[k] > 0 ? 0 : 1)
-                                                  : static_cast<std::int64_t>(std::floor(q[k] / unit));
+    ijk[k] = std::abs(q[k] - plane * unit) <= tol
+                 ? static_cast<std::int64_t>(plane) - (dir[k] > 0 ? 0 : 1)
+                 : static_cast<std::int64_t>(std::floor(q[k] / unit));
   }
   return find_cell(tree, tree.depth, ijk);
 }
@@ -57,8 +58,8 @@ int leaf_entered(const Octree& tree, const Vec3& q, const Vec3& dir) {
 /// whose list omits crease cones, is never reached: its ball is entered before it). False,
 /// for the caller's query over all primitives, when v lies in P, no entry comes by t_limit,
 /// or the walk crosses more than a few leaves or cannot follow the ray.
-bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Locale& locale, double t_limit,
-                 double& t) {
+bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Locale& locale,
+                 double t_limit, double& t) {
   if (!ctx.opt.local_queries || !locale.prims || !locale.cover.contains(v)) return false;
   double first = std::numeric_limits<double>::infinity();
   bool inside = false;
@@ -103,7 +104,8 @@ bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Local
     const double s = ctx.tree.side(cell.level);
     double next;
     // The leaf must pick the ray up where the last box let it go, and carry it further.
-    if (!crossing(cube.min(), cube.max(), t0, next) || t0 > exit + 1e-9 * s || !(next > exit)) return false;
+    if (!crossing(cube.min(), cube.max(), t0, next) || t0 > exit + 1e-9 * s || !(next > exit))
+      return false;
     exit = next;
     for_each_leaf_primitive(ctx, leaf, enter);
     if (inside) return false;
@@ -128,8 +130,8 @@ Locale leaf_locale(const Context& ctx, int leaf) {
   return l;
 }
 
-/// P for a point (vertices of --no-dual, --refine and gap splitting): the primitives meeting the closed
-/// cube of any leaf that contains it (for an active leaf, its Spheres(c) and Cones(c); a
+/// P for a point (vertices of --no-dual, --refine and gap splitting): the primitives meeting the
+/// closed cube of any leaf that contains it (for an active leaf, its Spheres(c) and Cones(c); a
 /// point of a cone can lie in an inactive leaf, which then contributes its cones). The leaf
 /// size for the travel limit is the smallest such leaf's.
 Locale point_locale(const Context& ctx, const Vec3& p) {
@@ -205,10 +207,17 @@ Outcome migrate(const Context& ctx, const Vec3& v, const Locale& locale, Vec3& o
 
 void count_outcome(Outcome o, RefineStats& stats) {
   switch (o) {
-    case Outcome::ray: break;
-    case Outcome::zero_direction: ++stats.fallback_zero_direction; break;
-    case Outcome::missed: ++stats.fallback_missed; break;
-    case Outcome::too_far: ++stats.fallback_too_far; break;
+    case Outcome::ray:
+      break;
+    case Outcome::zero_direction:
+      ++stats.fallback_zero_direction;
+      break;
+    case Outcome::missed:
+      ++stats.fallback_missed;
+      break;
+    case Outcome::too_far:
+      ++stats.fallback_too_far;
+      break;
   }
 }
 

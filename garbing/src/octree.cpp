@@ -160,7 +160,10 @@ class OctreeBuilder {
     auto j = b.begin();
     while (i != a.end() && j != b.end()) {
       if (*i == *j) return true;
-      if (*i < *j) ++i; else ++j;
+      if (*i < *j)
+        ++i;
+      else
+        ++j;
     }
     return false;
   }
@@ -197,7 +200,8 @@ class OctreeBuilder {
     for (int t : touching) {
       const OctreeCell& other = tree_.cells[t];
       if (!other.is_active() || (t >= first_candidate && t > c)) continue;
-      if (criterion(4) && std::abs(cell.level - other.level) > 1 && contact_dimension(cell, other) >= 1)
+      if (criterion(4) && std::abs(cell.level - other.level) > 1 &&
+          contact_dimension(cell, other) >= 1)
         marks.emplace_back(cell.level < other.level ? c : t, 4);
       if (test_3 && other.level >= d && !other.inside_one_ball) {
         if (!sets_intersect(cell, other)) {
@@ -315,7 +319,8 @@ class OctreeBuilder {
     // The lists, sized once, in the parent's (sorted) order.
     for (int k = 0; k < 8; ++k) out[k].spheres.reserve(count[k]);
     for (std::size_t x = 0; x < parent.spheres.size(); ++x)
-      for (unsigned m = masks[x]; m != 0; m &= m - 1) out[__builtin_ctz(m)].spheres.push_back(parent.spheres[x]);
+      for (unsigned m = masks[x]; m != 0; m &= m - 1)
+        out[__builtin_ctz(m)].spheres.push_back(parent.spheres[x]);
     // Cones(child), the cones whose solid meets the cube while neither of their balls does:
     // candidates are the parent's and those of the parent's balls (a cone meets a sub-cube
     // only if it meets the cube). A cube inside one ball holds no boundary and is never tested
@@ -335,7 +340,8 @@ class OctreeBuilder {
     unsigned skip = 0;
     for (int j = 0; j < 8; ++j) skip |= static_cast<unsigned>(out[j].inside_one_ball) << j;
     if (skip == 0xFF) return;
-    for (std::size_t x = 0; x < parent.spheres.size(); ++x) mask_of_atom[parent.spheres[x]] = masks[x];
+    for (std::size_t x = 0; x < parent.spheres.size(); ++x)
+      mask_of_atom[parent.spheres[x]] = masks[x];
     const Vec3 parent_lo(lo[0][0], lo[1][0], lo[2][0]);
     const int n = sphere_count();
     auto consider = [&](int k) {
@@ -346,7 +352,8 @@ class OctreeBuilder {
       if ((via_ball | skip) == 0xFF || !near_crease_fill(cone, parent_lo, 2 * side)) return;
       for (int j = 0; j < 8; ++j)
         if (!(skip >> j & 1) && !(via_ball >> j & 1) &&
-            fill_meets_cube(cone, Vec3(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]), side))
+            fill_meets_cube(cone, Vec3(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]),
+                            side))
           out[j].cones.push_back(k);
     };
     for (int k : parent.cones) consider(k);
@@ -391,7 +398,8 @@ class OctreeBuilder {
 
 Octree build_octree(const TargetShape& g, const OctreeOptions& opt) {
   if (!(g.frame().cube_side > 0))
-    throw InvalidInput("build_octree: G must be built in its atoms' bounding cube frame (bounding_cube_frame)");
+    throw InvalidInput(
+        "build_octree: G must be built in its atoms' bounding cube frame (bounding_cube_frame)");
   if (opt.max_depth < 1 || opt.max_depth > 20)
     throw InvalidInput("max depth " + std::to_string(opt.max_depth) + " must be in [1, 20]");
   if (opt.min_depth < 0 || opt.min_depth > opt.max_depth)

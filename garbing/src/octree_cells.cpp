@@ -67,7 +67,8 @@ void touching_leaves(const Octree& tree, int c, std::vector<int>& out) {
         int climb = 0;  // levels up to the common ancestor
         for (int a = 0; a < 3; ++a) {
           nb[a] = static_cast<std::int64_t>(cell.ijk[a]) + offset[a];
-          if (nb[a] < 0 || nb[a] >= size) inside = false;
+          if (nb[a] < 0 || nb[a] >= size)
+            inside = false;
           else {
             const std::uint64_t diff = static_cast<std::uint64_t>(nb[a]) ^ cell.ijk[a];
             if (diff != 0) climb = std::max(climb, 64 - __builtin_clzll(diff));

@@ -161,9 +161,12 @@ bool line_interval(const Cone& k, const Vec3& o, const Vec3& d, double& t0, doub
   const double scale = d.squaredNorm();
   double qlo = -kInf, qhi = kInf;
   if (std::abs(A) <= 1e-14 * scale) {  // parallel to a generator: linear
-    if (B > 0) qhi = -C / B;
-    else if (B < 0) qlo = -C / B;
-    else if (C > 0) return false;
+    if (B > 0)
+      qhi = -C / B;
+    else if (B < 0)
+      qlo = -C / B;
+    else if (C > 0)
+      return false;
   } else {
     const double disc = B * B - 4 * A * C;
     if (A > 0) {
@@ -180,7 +183,8 @@ bool line_interval(const Cone& k, const Vec3& o, const Vec3& d, double& t0, doub
       auto radius_ok = [&](double x0, double x1) {
         if (!(x0 <= x1)) return false;
         const double mid = std::isfinite(x0) && std::isfinite(x1) ? (x0 + x1) / 2
-                           : std::isfinite(x0) ? x0 : x1;
+                           : std::isfinite(x0)                    ? x0
+                                                                  : x1;
         return alpha + beta * mid >= 0;
       };
       if (radius_ok(ra, rb)) {
@@ -238,7 +242,8 @@ Vec3 closest_solid_point(const Cone& k, const Vec3& p) {
 Vec3 closest_lateral_point(const Cone& k, const Vec3& p) {
   const Profile q = profile(k, p);
   const double s = generator_parameter(k, q.x, q.rho);
-  return k.c1 + (k.t_lo + s * (k.t_hi - k.t_lo)) * k.u + (k.rho_lo + s * (k.rho_hi - k.rho_lo)) * q.e;
+  return k.c1 + (k.t_lo + s * (k.t_hi - k.t_lo)) * k.u +
+         (k.rho_lo + s * (k.rho_hi - k.rho_lo)) * q.e;
 }
 
 double lateral_area(const Cone& k) {
@@ -252,9 +257,11 @@ Eigen::AlignedBox3d bounding_box(const MedialAtom& s) {
 
 Eigen::AlignedBox3d bounding_box(const Cone& c) {
   // A disk of radius rho and unit normal u spans rho * sqrt(1 - u_k^2) along axis k.
-  const Vec3 half = c.u.cwiseAbs2().unaryExpr([](double x) { return std::sqrt(std::max(0.0, 1 - x)); });
+  const Vec3 half =
+      c.u.cwiseAbs2().unaryExpr([](double x) { return std::sqrt(std::max(0.0, 1 - x)); });
   Vec3 lo = Vec3::Constant(kInf), hi = Vec3::Constant(-kInf);
-  for (const auto& [t, rho] : {std::make_pair(c.t_lo, c.rho_lo), std::make_pair(c.t_hi, c.rho_hi)}) {
+  for (const auto& [t, rho] :
+       {std::make_pair(c.t_lo, c.rho_lo), std::make_pair(c.t_hi, c.rho_hi)}) {
     const Vec3 o = c.c1 + t * c.u;
     lo = lo.cwiseMin(o - rho * half);
     hi = hi.cwiseMax(o + rho * half);
@@ -271,8 +278,8 @@ bool meets_box(const MedialAtom& ball, const Vec3& lo, const Vec3& hi) {
 }
 
 bool hull_meets_box(const Cone& k, const Vec3& lo, const Vec3& hi) {
-  return detail::convex_reaches_zero([&](double t) { return box_distance(lo, hi, k.centre(t)) - k.radius(t); },
-                                     k.lipschitz);
+  return detail::convex_reaches_zero(
+      [&](double t) { return box_distance(lo, hi, k.centre(t)) - k.radius(t); }, k.lipschitz);
 }
 
 bool near_crease_fill(const Cone& k, const Vec3& lo, double side) {
@@ -286,11 +293,13 @@ bool near_crease_fill(const Cone& k, const Vec3& lo, double side) {
   const double y_hi = k.fill_hi[1] + half_diagonal, y_lo = k.fill_lo[1] - half_diagonal;
   if (y2 > y_hi * y_hi * (1 + 1e-12) || (y_lo > 0 && y2 < y_lo * y_lo * (1 - 1e-12))) return false;
   const double y = std::sqrt(y2);
-  if (y < y_lo || y > y_hi) return false;  // off the triangle's box
+  if (y < y_lo || y > y_hi) return false;    // off the triangle's box
   const double bound2 = 0.75 * side * side;  // (half diagonal)^2
   // Inside the triangle: the same side of its three edges.
   const double x0 = k.crease.along, rho0 = k.crease.radius;
-  auto cross = [&](double ax, double ay, double bx, double by) { return (bx - ax) * (y - ay) - (by - ay) * (x - ax); };
+  auto cross = [&](double ax, double ay, double bx, double by) {
+    return (bx - ax) * (y - ay) - (by - ay) * (x - ax);
+  };
   const double c1 = cross(x0, rho0, k.t_lo, k.rho_lo);
   const double c2 = cross(k.t_lo, k.rho_lo, k.t_hi, k.rho_hi);
   const double c3 = cross(k.t_hi, k.rho_hi, x0, rho0);
@@ -310,8 +319,8 @@ bool fill_meets_cube(const Cone& k, const Vec3& lo, double side) {
 }
 
 bool hulls_meet(const Cone& a, const Cone& b) {
-  return detail::convex_reaches_zero([&](double s) { return hull_distance(b, a.centre(s)) - a.radius(s); },
-                                     a.lipschitz);
+  return detail::convex_reaches_zero(
+      [&](double s) { return hull_distance(b, a.centre(s)) - a.radius(s); }, a.lipschitz);
 }
 
 }  // namespace mg::garbing

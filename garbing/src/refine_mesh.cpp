@@ -68,7 +68,8 @@ RefinedMesh refine_mesh(const CoarseMesh& m1, const Octree& tree, const TargetSh
   refine::migrate_range(ctx, m2, 0, stats);
   Triangles triangles = refine::triangulate(polygons, ctx, m2, stats);
   // Gap splitting: later rounds test only the edges at vertices the round before added.
-  for (std::size_t round = 0, fresh = 0; opt.max_gap > 0 && round < std::size_t(opt.gap_rounds); ++round) {
+  for (std::size_t round = 0, fresh = 0; opt.max_gap > 0 && round < std::size_t(opt.gap_rounds);
+       ++round) {
     const std::size_t added = m2.start.size();
     if (!refine::split_gaps(triangles, fresh, ctx, m2, stats)) break;
     fresh = added;

@@ -53,13 +53,15 @@ TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::arra
   if (!frame_.is_world())
     for (MedialAtom& s : atoms_.atoms) s.centre = frame_.to_local(s.centre);
   cones_.reserve(pairs.size());
-  for (const auto& p : pairs) cones_.push_back(make_cone(atoms_.atoms[p[0]], atoms_.atoms[p[1]], p[0], p[1]));
+  for (const auto& p : pairs)
+    cones_.push_back(make_cone(atoms_.atoms[p[0]], atoms_.atoms[p[1]], p[0], p[1]));
   cones_by_atom_start_.assign(atoms_.atoms.size() + 1, 0);
   for (const auto& c : cones_) {
     ++cones_by_atom_start_[c.a + 1];
     ++cones_by_atom_start_[c.b + 1];
   }
-  for (std::size_t i = 0; i < atoms_.atoms.size(); ++i) cones_by_atom_start_[i + 1] += cones_by_atom_start_[i];
+  for (std::size_t i = 0; i < atoms_.atoms.size(); ++i)
+    cones_by_atom_start_[i + 1] += cones_by_atom_start_[i];
   cones_by_atom_.resize(2 * cones_.size());
   std::vector<int> fill(cones_by_atom_start_.begin(), cones_by_atom_start_.end() - 1);
   for (std::size_t k = 0; k < cones_.size(); ++k) {
@@ -80,21 +82,25 @@ TargetShape::~TargetShape() = default;
 TargetShape::TargetShape(TargetShape&&) noexcept = default;
 TargetShape& TargetShape::operator=(TargetShape&&) noexcept = default;
 
-TargetShape make_target_shape(const MedialSurface& atoms, const ConeOptions& cones, const Frame& frame) {
+TargetShape make_target_shape(const MedialSurface& atoms, const ConeOptions& cones,
+                              const Frame& frame) {
   return TargetShape(atoms, cone_pairs(atoms, cones), frame);
 }
 
 Vec3 TargetShape::migration_vector(PrimitiveId i, const Vec3& v) const {
-  return is_sphere(i) ? garbing::migration_vector(atoms_.atoms[i], v) : garbing::migration_vector(cone(i), v);
+  return is_sphere(i) ? garbing::migration_vector(atoms_.atoms[i], v)
+                      : garbing::migration_vector(cone(i), v);
 }
 
 bool TargetShape::primitive_contains(PrimitiveId i, const Vec3& p, double eps) const {
-  return is_sphere(i) ? contains_deeper_than(atoms_.atoms[i], p, eps) : contains_deeper_than(cone(i), p, eps);
+  return is_sphere(i) ? contains_deeper_than(atoms_.atoms[i], p, eps)
+                      : contains_deeper_than(cone(i), p, eps);
 }
 
 bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& dir, double& t0,
                                double& t1) const {
-  return is_sphere(i) ? line_interval(atoms_.atoms[i], origin, dir, t0, t1) : line_interval(cone(i), origin, dir, t0, t1);
+  return is_sphere(i) ? line_interval(atoms_.atoms[i], origin, dir, t0, t1)
+                      : line_interval(cone(i), origin, dir, t0, t1);
 }
 
 bool TargetShape::contains(const Vec3& p) const {
@@ -136,16 +142,18 @@ bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max,
   // a leaf) is the whole segment [-t_max, t_max] collected.
   inside = false;
   double first = kInf;
-  bvh_->visit_segment(v, dir, [&] { return std::min(first, t_max); }, [&](int i) {
-    double a, z;
-    if (!ray_interval(i, v, dir, a, z) || z < 0) return true;
-    if (a <= 0) {
-      inside = true;
-      return false;
-    }
-    if (a <= t_max) first = std::min(first, a);
-    return true;
-  });
+  bvh_->visit_segment(
+      v, dir, [&] { return std::min(first, t_max); },
+      [&](int i) {
+        double a, z;
+        if (!ray_interval(i, v, dir, a, z) || z < 0) return true;
+        if (a <= 0) {
+          inside = true;
+          return false;
+        }
+        if (a <= t_max) first = std::min(first, a);
+        return true;
+      });
   if (!inside) {
     if (first > t_max) return false;
     t = first;
@@ -153,13 +161,16 @@ bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max,
   }
   thread_local std::vector<std::pair<double, double>> runs;  // in units of dir from v
   runs.clear();
-  bvh_->visit_segment(v - t_max * dir, dir, [&] { return 2 * t_max; }, [&](int i) {
-    double a, z;
-    if (ray_interval(i, v, dir, a, z) && z >= -t_max && a <= t_max) runs.emplace_back(a, z);
-    return true;
-  });
+  bvh_->visit_segment(
+      v - t_max * dir, dir, [&] { return 2 * t_max; },
+      [&](int i) {
+        double a, z;
+        if (ray_interval(i, v, dir, a, z) && z >= -t_max && a <= t_max) runs.emplace_back(a, z);
+        return true;
+      });
   // Leave the union toward negative t: merge the runs containing 0 downward.
-  std::sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+  std::sort(runs.begin(), runs.end(),
+            [](const auto& x, const auto& y) { return x.second > y.second; });
   const double slack = 1e-12 * (1 + t_max);
   double end = 0;
   for (const auto& [a, z] : runs) {
@@ -174,11 +185,12 @@ bool TargetShape::line_to_boundary(const Vec3& v, const Vec3& dir, double t_max,
 bool TargetShape::first_entry(const Vec3& origin, const Vec3& dir, double t_max, double& t) const {
   // Best-first along the ray: nodes entered after the best entry so far cannot improve it.
   double best = kInf;
-  bvh_->visit_along_ray(origin, dir, t_max, [&](double entry) { return entry < best; },
-                        [&](int i) {
-                          double a, z;
-                          if (ray_interval(i, origin, dir, a, z) && a >= 0 && a < best) best = a;
-                        });
+  bvh_->visit_along_ray(
+      origin, dir, t_max, [&](double entry) { return entry < best; },
+      [&](int i) {
+        double a, z;
+        if (ray_interval(i, origin, dir, a, z) && a >= 0 && a < best) best = a;
+      });
   if (best > t_max) return false;
   t = best;
   return true;
@@ -207,11 +219,12 @@ bool TargetShape::run_end(const Vec3& origin, const Vec3& dir, double t_max, dou
       waiting.push({a, z});
     }
   };
-  bvh_->visit_along_ray(origin, dir, t_max, [&](double entry) { return entry <= end + slack && end <= t_max; },
-                        [&](int i) {
-                          double a, z;
-                          if (ray_interval(i, origin, dir, a, z) && z >= 0) absorb(a, z);
-                        });
+  bvh_->visit_along_ray(
+      origin, dir, t_max, [&](double entry) { return entry <= end + slack && end <= t_max; },
+      [&](int i) {
+        double a, z;
+        if (ray_interval(i, origin, dir, a, z) && z >= 0) absorb(a, z);
+      });
   if (!started || end > t_max) return false;  // not inside, or the run goes on past t_max
   t = end;
   return true;
@@ -222,7 +235,8 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
     // Outside: the nearest point of any primitive's solid, by branch and bound.
     double best = kInf;
     Vec3 out = p;
-    std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> queue;
+    std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>>
+        queue;
     if (!bvh_->nodes.empty()) queue.push({bvh_->nodes[0].box.squared_distance(p), 0});
     while (!queue.empty()) {
       const auto [d2, id] = queue.top();
@@ -270,7 +284,8 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
                 if (is_sphere(i)) {
                   const Vec3 d = p - atoms_.atoms[i].centre;
                   q = atoms_.atoms[i].centre +
-                      atoms_.atoms[i].radius * (d.squaredNorm() > 0 ? Vec3(d.normalized()) : Vec3(Vec3::UnitX()));
+                      atoms_.atoms[i].radius *
+                          (d.squaredNorm() > 0 ? Vec3(d.normalized()) : Vec3(Vec3::UnitX()));
                 } else {
                   q = closest_lateral_point(cone(i), p);
                 }
@@ -282,8 +297,9 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
   auto exposed = [&](const Vec3& q, int i, int j) {
     const double eps = 1e-12 * (1 + q.norm());
     bool free = true;
-    bvh_->visit([&](const detail::Box& bb) { return free && bb.squared_distance(q) == 0; },
-                [&](int k) { free = free && (k == i || k == j || !primitive_contains(k, q, eps)); });
+    bvh_->visit(
+        [&](const detail::Box& bb) { return free && bb.squared_distance(q) == 0; },
+        [&](int k) { free = free && (k == i || k == j || !primitive_contains(k, q, eps)); });
     return free;
   };
   double best = kInf;
@@ -329,7 +345,8 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
       out = p + t * d;
     }
   };
-  if (!around.empty() && around.front().distance > 0) probe((around.front().point - p).normalized());
+  if (!around.empty() && around.front().distance > 0)
+    probe((around.front().point - p).normalized());
   for (const Vec3& d : probe_directions()) probe(d);
   return out;
 }
@@ -338,7 +355,8 @@ namespace {
 
 /// Draw j (0, 1, 2) of sample k: a counter-based stream, so sample k depends only on (seed, k).
 double uniform(std::uint64_t seed, std::uint64_t k, int j) {
-  return unit_interval(splitmix64(seed * 0x632be59bd9b4e019ULL + 4 * k + static_cast<std::uint64_t>(j)));
+  return unit_interval(
+      splitmix64(seed * 0x632be59bd9b4e019ULL + 4 * k + static_cast<std::uint64_t>(j)));
 }
 
 }  // namespace
@@ -365,7 +383,8 @@ std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t 
     Vec3 q;
     if (is_sphere(i)) {
       const double z = 2 * u - 1, phi = 2 * M_PI * v, s = std::sqrt(std::max(0.0, 1 - z * z));
-      q = atoms_.atoms[i].centre + atoms_.atoms[i].radius * Vec3(s * std::cos(phi), s * std::sin(phi), z);
+      q = atoms_.atoms[i].centre +
+          atoms_.atoms[i].radius * Vec3(s * std::cos(phi), s * std::sin(phi), z);
     } else {
       // Lateral area element ~ rho(s): invert the cumulative of a linear density on [0, 1].
       const Cone& c = cone(i);
@@ -391,7 +410,8 @@ std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t 
   return out;
 }
 
-void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi, std::vector<PrimitiveId>& out) const {
+void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi,
+                                         std::vector<PrimitiveId>& out) const {
   const std::size_t start = out.size();
   bvh_->visit([&](const detail::Box& b) { return b.overlaps(lo, hi); },
               [&](int i) {
@@ -400,7 +420,8 @@ void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi, std::ve
                   return;
                 }
                 const Cone& k = cone(i);
-                if (meets_box(atoms_.atoms[k.a], lo, hi) || meets_box(atoms_.atoms[k.b], lo, hi) || hull_meets_box(k, lo, hi))
+                if (meets_box(atoms_.atoms[k.a], lo, hi) || meets_box(atoms_.atoms[k.b], lo, hi) ||
+                    hull_meets_box(k, lo, hi))
                   out.push_back(i);
               });
   std::sort(out.begin() + static_cast<long>(start), out.end());

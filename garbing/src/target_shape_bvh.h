@@ -114,9 +114,9 @@ struct TargetShape::Bvh {
     }
     if (best_axis >= 0) {
       const double lo = centres.lo[best_axis], extent = centres.hi[best_axis] - lo;
-      const auto mid = std::stable_partition(order.begin() + first, order.begin() + last, [&](int id) {
-        return bin_of(boxes[id], best_axis, lo, extent, kBins) <= best_bin;
-      });
+      const auto mid = std::stable_partition(
+          order.begin() + first, order.begin() + last,
+          [&](int id) { return bin_of(boxes[id], best_axis, lo, extent, kBins) <= best_bin; });
       return static_cast<int>(mid - order.begin());
     }
     Eigen::Index axis;
@@ -164,8 +164,8 @@ struct TargetShape::Bvh {
   /// increasing order of the parameter where the segment enters their leaf node's box, until
   /// `more(t_entry)` says no node entered at t_entry or later can matter.
   template <class More, class Visit>
-  void visit_along_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max, More&& more,
-                       Visit&& visit_primitive) const {
+  void visit_along_ray(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max,
+                       More&& more, Visit&& visit_primitive) const {
     if (nodes.empty()) return;
     const Eigen::Vector3d inv = dir.cwiseInverse();
     using Entry = std::pair<double, int>;
@@ -193,7 +193,8 @@ struct TargetShape::Bvh {
   /// `limit()` may shrink as primitives are visited, and nodes entered beyond it are skipped.
   /// Stops when `visit_primitive` returns false.
   template <class Limit, class Visit>
-  void visit_segment(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, Limit&& limit, Visit&& visit_primitive) const {
+  void visit_segment(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, Limit&& limit,
+                     Visit&& visit_primitive) const {
     if (nodes.empty()) return;
     const Eigen::Vector3d inv = dir.cwiseInverse();
     // Slabs by the direction's signs (the same products as Box::clip, without its swaps);

@@ -44,7 +44,8 @@ TEST(CoarseMesh, OneSphereAtAutomaticDepthHasThePapersFaceCount) {
 }
 
 /// Faces between active and inactive cells of a uniform grid at `level` over the same root.
-std::set<FaceKey> uniform_grid_faces(const mg::MedialAtom& ball, const mg::garbing::Octree& t, int level) {
+std::set<FaceKey> uniform_grid_faces(const mg::MedialAtom& ball, const mg::garbing::Octree& t,
+                                     int level) {
   const long n = 1L << level;
   const double s = t.side(level);
   const Eigen::Vector3d c = t.to_local(ball.centre);
@@ -134,7 +135,8 @@ TEST(CoarseMesh, LeavesMeetingAlongAnEdgeOrAtACornerCloseSeparately) {
   const double c2 = 0.75, c3 = 0.65;
   const std::vector<Case> cases = {
       {"edge", atoms({{Eigen::Vector3d(-c2, -c2, 0), 1}, {Eigen::Vector3d(c2, c2, 0), 1}}), 6},
-      {"corner", atoms({{Eigen::Vector3d(-c3, -c3, -c3), 1}, {Eigen::Vector3d(c3, c3, c3), 1}}), 5}};
+      {"corner", atoms({{Eigen::Vector3d(-c3, -c3, -c3), 1}, {Eigen::Vector3d(c3, c3, c3), 1}}),
+       5}};
   for (const auto& tc : cases) {
     for (bool criterion3 : {false, true}) {
       mg::garbing::OctreeOptions opt;

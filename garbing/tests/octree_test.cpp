@@ -1,5 +1,5 @@
-#include "core/errors.h"
 #include "garbing/octree.h"
+#include "core/errors.h"
 
 #include <gtest/gtest.h>
 
@@ -17,8 +17,10 @@ int contact(const mg::garbing::OctreeCell& a, const mg::garbing::OctreeCell& b) 
   const int level = std::max(a.level, b.level);
   int dim = 0;
   for (int k = 0; k < 3; ++k) {
-    const long alo = long(a.ijk[k]) << (level - a.level), ahi = long(a.ijk[k] + 1) << (level - a.level);
-    const long blo = long(b.ijk[k]) << (level - b.level), bhi = long(b.ijk[k] + 1) << (level - b.level);
+    const long alo = long(a.ijk[k]) << (level - a.level), ahi = long(a.ijk[k] + 1)
+                                                                << (level - a.level);
+    const long blo = long(b.ijk[k]) << (level - b.level), bhi = long(b.ijk[k] + 1)
+                                                                << (level - b.level);
     const long overlap = std::min(ahi, bhi) - std::max(alo, blo);
     if (overlap < 0) return -1;
     if (overlap > 0) ++dim;
@@ -69,8 +71,9 @@ TEST(Octree, PrincipalFrameIsRightHandedWithFixedSigns) {
 
 TEST(Octree, RepeatedEigenvaluesGiveTheIdentityFrame) {
   EXPECT_TRUE(mg_test::octree_of(mg_test::ring(60, 1.0, 0.3)).frame.axes.isIdentity());
-  EXPECT_TRUE(mg_test::octree_of(atoms({{Eigen::Vector3d(0, 0, 0), 1}, {Eigen::Vector3d(1, 1, 1), 1}}))
-                  .frame.axes.isIdentity());
+  EXPECT_TRUE(
+      mg_test::octree_of(atoms({{Eigen::Vector3d(0, 0, 0), 1}, {Eigen::Vector3d(1, 1, 1), 1}}))
+          .frame.axes.isIdentity());
 }
 
 TEST(Octree, MinDepthOverrideAndMaxDepthStop) {
@@ -101,7 +104,9 @@ struct SampledHull {
   double r1, dr;
   static constexpr int steps = 2000;
   SampledHull(const mg::MedialSurface& s, const std::array<int, 2>& pair)
-      : c1(s.atoms[pair[0]].centre), d(s.atoms[pair[1]].centre - c1), r1(s.atoms[pair[0]].radius),
+      : c1(s.atoms[pair[0]].centre),
+        d(s.atoms[pair[1]].centre - c1),
+        r1(s.atoms[pair[0]].radius),
         dr(s.atoms[pair[1]].radius - r1) {}
   Eigen::Vector3d centre(double t) const { return c1 + t * d; }
   double radius(double t) const { return r1 + t * dr; }
@@ -138,8 +143,9 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::garbing::Octree&
     if (i < n) {
       if (i == pj[0] || i == pj[1]) return true;
       const auto& a = s.atoms[i];
-      return SampledHull::min_over_t([&](double u) { return (a.centre - hj.centre(u)).norm() - hj.radius(u); }) <=
-             a.radius + hj.tolerance();
+      return SampledHull::min_over_t([&](double u) {
+               return (a.centre - hj.centre(u)).norm() - hj.radius(u);
+             }) <= a.radius + hj.tolerance();
     }
     const auto& pi = pairs[i - n];
     if (pi[0] == pj[0] || pi[0] == pj[1] || pi[1] == pj[0] || pi[1] == pj[1]) return true;
@@ -147,8 +153,8 @@ void expect_criteria_hold(const mg::MedialSurface& s, const mg::garbing::Octree&
     double best = INFINITY;
     for (int x = 0; x <= 200; ++x)
       for (int y = 0; y <= 200; ++y)
-        best = std::min(best, (hi.centre(x / 200.0) - hj.centre(y / 200.0)).norm() - hi.radius(x / 200.0) -
-                                  hj.radius(y / 200.0));
+        best = std::min(best, (hi.centre(x / 200.0) - hj.centre(y / 200.0)).norm() -
+                                  hi.radius(x / 200.0) - hj.radius(y / 200.0));
     return best <= 10 * (hi.tolerance() + hj.tolerance());
   };
   auto primitives = [&](const mg::garbing::OctreeCell& c) {
@@ -255,7 +261,8 @@ TEST_P(CreaseCones, AreTheConesMeetingTheCubeOutsideTheirBalls) {
       ball_touches = ball_touches || std::abs(gap) <= 1e-12;
     }
     if (ball_touches) continue;
-    const double gap = SampledHull::min_over_t([&](double u) { return cube_distance(hull.centre(u)) - hull.radius(u); });
+    const double gap = SampledHull::min_over_t(
+        [&](double u) { return cube_distance(hull.centre(u)) - hull.radius(u); });
     const bool is_listed = !cell.cones.empty();
     listed += is_listed;
     if (ball_meets) {
@@ -272,11 +279,12 @@ TEST_P(CreaseCones, AreTheConesMeetingTheCubeOutsideTheirBalls) {
   EXPECT_GT(listed, 10);
 }
 
-INSTANTIATE_TEST_SUITE_P(Octree, CreaseCones,
-                         ::testing::Values(std::array<double, 5>{1.6, 0.1, -0.2, 0.8, 5},   // shallow angle
-                                           std::array<double, 5>{0.9, 0.5, 0.3, 0.4, 6},    // small ball
-                                           std::array<double, 5>{1.2, -0.7, 0.4, 1.0, 5},   // equal radii
-                                           std::array<double, 5>{0.3, 0.2, 1.7, 0.9, 5}));  // off-axis
+INSTANTIATE_TEST_SUITE_P(
+    Octree, CreaseCones,
+    ::testing::Values(std::array<double, 5>{1.6, 0.1, -0.2, 0.8, 5},   // shallow angle
+                      std::array<double, 5>{0.9, 0.5, 0.3, 0.4, 6},    // small ball
+                      std::array<double, 5>{1.2, -0.7, 0.4, 1.0, 5},   // equal radii
+                      std::array<double, 5>{0.3, 0.2, 1.7, 0.9, 5}));  // off-axis
 
 TEST(Octree, TouchingLeavesMatchesBruteForce) {
   mg::garbing::OctreeOptions opt;
@@ -324,7 +332,8 @@ TEST(Octree, CubesTileWithoutGapsOrOverlaps) {
 
 TEST(Octree, RefusesBadInput) {
   EXPECT_THROW(mg_test::octree_of(mg::MedialSurface{}), mg::InvalidInput);
-  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), std::numeric_limits<double>::quiet_NaN()}})),
+  EXPECT_THROW(mg_test::octree_of(
+                   atoms({{Eigen::Vector3d::Zero(), std::numeric_limits<double>::quiet_NaN()}})),
                mg::InvalidInput);
   EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 0.0}})), mg::InvalidInput);
   EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), -1.0}})), mg::InvalidInput);
@@ -335,8 +344,10 @@ TEST(Octree, RefusesBadInput) {
   // Automatic d above the stop: a tiny ball beside a huge one.
   opt = {};
   opt.max_depth = 5;
-  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 1.0}, {Eigen::Vector3d(1000, 0, 0), 0.001}}), opt),
-               mg::InvalidInput);
+  EXPECT_THROW(
+      mg_test::octree_of(
+          atoms({{Eigen::Vector3d::Zero(), 1.0}, {Eigen::Vector3d(1000, 0, 0), 0.001}}), opt),
+      mg::InvalidInput);
   // G outside a bounding cube frame (world coordinates) has no root cube.
   const auto one = atoms({{Eigen::Vector3d::Zero(), 1.0}});
   EXPECT_THROW(mg::garbing::build_octree(mg::garbing::make_target_shape(one)), mg::InvalidInput);

@@ -128,7 +128,9 @@ TEST(ClosestPoints, AreOnTheFrustumAndNearestAmongItsSamples) {
   for (int i = 0; i < 100; ++i) {
     const Vector3d p(u(rng), u(rng) - 1, u(rng) - 1);
     const Vector3d q = gb::closest_solid_point(cone, p), l = gb::closest_lateral_point(cone, p);
-    if (gb::contains_deeper_than(cone, p, 1e-12)) EXPECT_EQ(q, p);
+    if (gb::contains_deeper_than(cone, p, 1e-12)) {
+      EXPECT_EQ(q, p);
+    }
     EXPECT_TRUE(gb::contains_deeper_than(cone, q, -1e-9)) << p.transpose();
     const double x = (l - cone.c1).dot(cone.u), rho = ((l - cone.c1) - x * cone.u).norm();
     EXPECT_NEAR(rho, (cone.r1 - x * cone.sin_phi) / cone.cos_phi, 1e-12);  // on the lateral surface
@@ -193,11 +195,16 @@ TEST(BoxTests, TheBoundingBoxesHoldTheirPrimitives) {
   std::uniform_real_distribution<double> u(-1.5, 3);
   for (int i = 0; i < 20000; ++i) {
     const Vector3d p(u(rng), u(rng) - 0.75, u(rng) - 0.75);
-    if (gb::contains_deeper_than(cone, p, 0)) EXPECT_TRUE(frustum.contains(p)) << p.transpose();
-    if (gb::contains_deeper_than(kA, p, 0)) EXPECT_TRUE(ball.contains(p)) << p.transpose();
+    if (gb::contains_deeper_than(cone, p, 0)) {
+      EXPECT_TRUE(frustum.contains(p)) << p.transpose();
+    }
+    if (gb::contains_deeper_than(kA, p, 0)) {
+      EXPECT_TRUE(ball.contains(p)) << p.transpose();
+    }
   }
-  EXPECT_NEAR(gb::lateral_area(cone), M_PI * (cone.rho_lo + cone.rho_hi) *
-                                          std::hypot(cone.t_hi - cone.t_lo, cone.rho_hi - cone.rho_lo),
+  EXPECT_NEAR(gb::lateral_area(cone),
+              M_PI * (cone.rho_lo + cone.rho_hi) *
+                  std::hypot(cone.t_hi - cone.t_lo, cone.rho_hi - cone.rho_lo),
               1e-15);
 }
 
@@ -210,8 +217,11 @@ TEST(HullsMeet, AgreesWithTheDistanceBetweenSampledBalls) {
     const mg::MedialAtom q{p.centre + Vector3d(0.5 * r(rng), 0.3, -0.2), r(rng)};
     const gb::Cone b = gb::make_cone(p, q, 2, 3);
     double gap = INFINITY;
-    for (int s = 0; s <= 400; ++s) gap = std::min(gap, gb::hull_distance(a, b.centre(s / 400.0)) - b.radius(s / 400.0));
-    if (std::abs(gap) > 1e-3) EXPECT_EQ(gb::hulls_meet(a, b), gap <= 0) << i;
+    for (int s = 0; s <= 400; ++s)
+      gap = std::min(gap, gb::hull_distance(a, b.centre(s / 400.0)) - b.radius(s / 400.0));
+    if (std::abs(gap) > 1e-3) {
+      EXPECT_EQ(gb::hulls_meet(a, b), gap <= 0) << i;
+    }
   }
 }
 

@@ -1,13 +1,13 @@
-#include "garbing/detail/polygon_triangulation.h"
+#include "garbing/refine_mesh.h"
 #include "core/errors.h"
 #include "core/mesh_topology.h"
-#include "garbing/garb.h"
-#include "garbing/refine_mesh.h"
 #include "core/triangle_defects.h"
+#include "garbing/detail/polygon_triangulation.h"
+#include "garbing/garb.h"
 
 #include <gtest/gtest.h>
-#include <iostream>
 #include <tbb/global_control.h>
+#include <iostream>
 
 #include "atom_sets.h"
 
@@ -16,9 +16,10 @@ namespace {
 using Eigen::Vector3d;
 using mg_test::atoms;
 
-mg::garbing::RefinedMesh garb(const mg::MedialSurface& s, const mg::garbing::RefineOptions& ropt = {},
-                               const mg::garbing::OctreeOptions& topt = {},
-                               const mg::garbing::ConeOptions& cones = {}) {
+mg::garbing::RefinedMesh garb(const mg::MedialSurface& s,
+                              const mg::garbing::RefineOptions& ropt = {},
+                              const mg::garbing::OctreeOptions& topt = {},
+                              const mg::garbing::ConeOptions& cones = {}) {
   return mg::garbing::garb(s, {cones, topt, ropt}).m2;
 }
 
@@ -177,7 +178,8 @@ double farthest_sample(const mg::Mesh& m, const mg::garbing::TargetShape& shape)
   double worst = 0;
   for (const auto& f : soup.faces) {
     const Vector3d a = soup.points[f[0]], b = soup.points[f[1]], c = soup.points[f[2]];
-    for (const Vector3d& p : std::initializer_list<Vector3d>{a, (a + b) / 2, (b + c) / 2, (c + a) / 2, (a + b + c) / 3})
+    for (const Vector3d& p :
+         std::initializer_list<Vector3d>{a, (a + b) / 2, (b + c) / 2, (c + a) / 2, (a + b + c) / 3})
       worst = std::max(worst, shape.distance(p));
   }
   return worst;
@@ -222,7 +224,8 @@ TEST(RefineMesh, GapSplittingFollowsASharpCrease) {
 TEST(DualFaceTriangulation, ShortestDiagonalsAndNoRepeatedEdge) {
   // A hexagon stretched along x: the least total diagonal length is a zigzag of the three
   // short chords across it, never a long chord along it.
-  const std::vector<Vector3d> hexagon = {{0, 0, 0}, {1, -1, 0}, {3, -1, 0}, {4, 0, 0}, {3, 1, 0}, {1, 1, 0}};
+  const std::vector<Vector3d> hexagon = {{0, 0, 0}, {1, -1, 0}, {3, -1, 0},
+                                         {4, 0, 0}, {3, 1, 0},  {1, 1, 0}};
   mg::garbing::detail::EdgeSet edges(hexagon.size());
   const std::vector<int> poly = {0, 1, 2, 3, 4, 5};
   for (int i = 0; i < 6; ++i) edges.insert(poly[i], poly[(i + 1) % 6]);
@@ -305,7 +308,8 @@ TEST(RefineMesh, DeepCreasesOfEveryConeLandOnG) {
   const mg::garbing::TargetShape g = mg_test::shape_of(s, every_cone());
   const mg::garbing::Octree tree = mg::garbing::build_octree(g, coarse());
   long crease_leaves = 0;
-  for (int c : tree.leaves) crease_leaves += tree.cells[c].is_active() && tree.cells[c].spheres.empty();
+  for (int c : tree.leaves)
+    crease_leaves += tree.cells[c].is_active() && tree.cells[c].spheres.empty();
   ASSERT_GT(crease_leaves, 100);
   const auto m2 = mg::garbing::refine_mesh(mg::garbing::extract_coarse_mesh(tree), tree, g);
   expect_sound(m2.mesh, "blob, every cone");

@@ -1,5 +1,5 @@
-#include "core/errors.h"
 #include "garbing/target_shape.h"
+#include "core/errors.h"
 
 #include <gtest/gtest.h>
 
@@ -26,9 +26,9 @@ TEST(TargetShape, WithinIsTheDistanceToTheUnionAgainstATolerance) {
   const double over_cone = (2 - 0.75 / cos_phi) * cos_phi;  // (1, 2, 0) to the lateral surface
   EXPECT_TRUE(shape.within(Vector3d(1, 2, 0), over_cone * (1 + 1e-9)));
   EXPECT_FALSE(shape.within(Vector3d(1, 2, 0), over_cone * (1 - 1e-9)));
-  EXPECT_TRUE(shape.within(Vector3d(0, -1.5, 0), 0.5 + 1e-12));   // 0.5 from the first ball
+  EXPECT_TRUE(shape.within(Vector3d(0, -1.5, 0), 0.5 + 1e-12));  // 0.5 from the first ball
   EXPECT_FALSE(shape.within(Vector3d(0, -1.5, 0), 0.5 - 1e-9));
-  EXPECT_TRUE(shape.within(Vector3d(0.2, 0.1, 0), 0));            // inside
+  EXPECT_TRUE(shape.within(Vector3d(0.2, 0.1, 0), 0));  // inside
   // Between the balls (1.22 from both centres), under the lateral surface (R(1) = 0.775).
   EXPECT_FALSE(gb::TargetShape(s, {}).within(Vector3d(1, 0.7, 0), 0.01));
   EXPECT_TRUE(shape.within(Vector3d(1, 0.7, 0), 0));
@@ -69,7 +69,8 @@ TEST(TargetShape, LineToBoundaryMatchesAllIntervals) {
       found = first <= t_max;
       expected = first;
     } else {
-      std::sort(runs.begin(), runs.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
+      std::sort(runs.begin(), runs.end(),
+                [](const auto& x, const auto& y) { return x.second > y.second; });
       double end = 0;
       for (const auto& [a, z] : runs) {
         if (z < end - 1e-12 * (1 + t_max)) break;
@@ -113,7 +114,7 @@ TEST(TargetShape, RaysThroughTheConeSolid) {
 
 TEST(TargetShape, ContainsAndClosestPoint) {
   const gb::TargetShape shape(atoms({kA, kB}), {{0, 1}});
-  EXPECT_TRUE(shape.contains(Vector3d(1, 0.7, 0)));   // in the cone, outside both balls
+  EXPECT_TRUE(shape.contains(Vector3d(1, 0.7, 0)));  // in the cone, outside both balls
   EXPECT_FALSE(shape.contains(Vector3d(1, 0.8, 0)));
   const gb::TargetShape balls(atoms({kA, kB}), {});
   EXPECT_FALSE(balls.contains(Vector3d(1, 0.7, 0)));  // the waist without the cone
@@ -180,8 +181,9 @@ TEST(ConePairs, RegularTriangulationEdgesOfATallBipyramid) {
   opt.source = gb::ConeSource::all_pairs;
   EXPECT_EQ(gb::cone_pairs(s, opt).size(), 10u);
   opt.source = gb::ConeSource::regular_triangulation;
-  EXPECT_EQ(gb::cone_pairs(s, opt), (std::vector<std::array<int, 2>>{
-                                        {0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
+  EXPECT_EQ(gb::cone_pairs(s, opt),
+            (std::vector<std::array<int, 2>>{
+                {0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {1, 3}, {1, 4}, {2, 3}, {2, 4}}));
   // Flattened (apexes at z = +-0.3), the apexes' edge crosses the triangle: all 10 pairs.
   mg::MedialSurface flat = s;
   flat.atoms[3].centre.z() = 0.3;

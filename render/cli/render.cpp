@@ -15,8 +15,34 @@
 
 namespace {
 
-void write_text(const std::string& text, const std::string& path) {
-  mg::write_file_atomically(path, [&](std::ostream& out) { out << text; });
+/// The camera: read from an existing view file (resized to --width/--height if given, at the
+/// same aspect ratio), else framed on the first object.
+/// @param reframing  --direction or --fov was given: refused with an existing view file
+/// @throws InvalidInput, IoError
+mg::render::View choose_view(const std::string& view_path, bool view_exists, bool reframing,
+                             int width, int height, const mg::render::SceneObject& first,
+                             const mg::render::FramingOptions& framing) {
+  if (!view_exists)
+    return mg::render::frame_object(first, width ? width : 800, height ? height : 600, framing);
+  if (reframing)
+    throw mg::InvalidInput(view_path +
+                           ": --direction and --fov apply only when framing a new "
+                           "view; this view file exists");
+  mg::render::View view = mg::render::read_view(view_path);
+  const int w = width ? width : (height ? 0 : view.width);
+  const int h = height ? height : (width ? 0 : view.height);
+  // One size given: the other follows the view's aspect ratio.
+  const int fw =
+      w ? w : static_cast<int>(std::lround(static_cast<double>(h) * view.width / view.height));
+  const int fh =
+      h ? h : static_cast<int>(std::lround(static_cast<double>(w) * view.height / view.width));
+  if (static_cast<long long>(fw) * view.height != static_cast<long long>(fh) * view.width)
+    throw mg::InvalidInput(view_path + ": framed for " + std::to_string(view.width) + "x" +
+                           std::to_string(view.height) + ", not for the aspect ratio of " +
+                           std::to_string(fw) + "x" + std::to_string(fh));
+  view.width = fw;
+  view.height = fh;
+  return view;
 }
 
 int render_main(int argc, char** argv) {
@@ -85,40 +111,22 @@ int render_main(int argc, char** argv) {
   std::vector<mg::render::SceneObject> objects;
   for (const std::string& input : inputs) objects.push_back(mg::render::read_scene_object(input));
 
-  mg::render::View view;
   const bool view_exists = !view_path.empty() && std::filesystem::exists(view_path);
-  if (view_exists) {
-    if (!direction.empty() || app.count("--fov"))
-      throw mg::InvalidInput(view_path +
-                             ": --direction and --fov apply only when framing a new "
-                             "view; this view file exists");
-    view = mg::render::read_view(view_path);
-    const int w = width ? width : (height ? 0 : view.width);
-    const int h = height ? height : (width ? 0 : view.height);
-    // One size given: the other follows the view's aspect ratio.
-    const int fw =
-        w ? w : static_cast<int>(std::lround(static_cast<double>(h) * view.width / view.height));
-    const int fh =
-        h ? h : static_cast<int>(std::lround(static_cast<double>(w) * view.height / view.width));
-    if (static_cast<long long>(fw) * view.height != static_cast<long long>(fh) * view.width)
-      throw mg::InvalidInput(view_path + ": framed for " + std::to_string(view.width) + "x" +
-                             std::to_string(view.height) + ", not for the aspect ratio of " +
-                             std::to_string(fw) + "x" + std::to_string(fh));
-    view.width = fw;
-    view.height = fh;
-  } else {
-    view = mg::render::frame_object(objects.front(), width ? width : 800, height ? height : 600,
-                                    framing);
-  }
+  const mg::render::View view =
+      choose_view(view_path, view_exists, !direction.empty() || app.count("--fov"), width, height,
+                  objects.front(), framing);
 
   const std::string scene = mg::render::povray_scene(objects, view, scene_opt);
   if (!view_path.empty() && !view_exists) mg::render::write_view(view, view_path);
-  if (!pov_path.empty())
-    write_text("// render with: povray " +
-                   mg::render::povray_arguments(std::filesystem::path(pov_path).filename().string(),
-                                                "image.png", view.width, view.height, povray) +
-                   "\n" + scene,
-               pov_path);
+  if (!pov_path.empty()) {
+    const std::string pov_name = std::filesystem::path(pov_path).filename().string();
+    mg::write_file_atomically(pov_path, [&](std::ostream& out) {
+      out << "// render with: povray "
+          << mg::render::povray_arguments(pov_name, "image.png", view.width, view.height, povray)
+          << '\n'
+          << scene;
+    });
+  }
   if (!output.empty()) mg::render::render_png(scene, output, view.width, view.height, povray);
   return 0;
 }

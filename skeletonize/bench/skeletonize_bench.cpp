@@ -10,8 +10,8 @@
 #include "skeletonize/poles.h"
 #include "skeletonize/union_topology.h"
 
-#include "bench_main.h"
 #include <tbb/global_control.h>
+#include "bench_main.h"
 
 #include <cstring>
 #include <iostream>
@@ -64,7 +64,9 @@ BENCHMARK(union_topology)->Unit(benchmark::kMillisecond)->UseRealTime();
 }  // namespace
 
 int main(int argc, char** argv) {
-  return mg::bench::run_benchmarks(argc, argv, "skeletonize_bench", "--mesh", [](const std::string& path) {
-    g_mesh = path.empty() ? mg::make_bumpy_torus(126, 126, 1.0, 0.35, 0.1, 12, 6) : mg::read_polygon_soup(path);
-  });
+  return mg::bench::run_benchmarks(
+      argc, argv, "skeletonize_bench", "--mesh", [](const std::string& path) {
+        g_mesh = path.empty() ? mg::make_bumpy_torus(126, 126, 1.0, 0.35, 0.1, 12, 6)
+                              : mg::read_polygon_soup(path);
+      });
 }

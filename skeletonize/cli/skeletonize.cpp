@@ -4,20 +4,17 @@
 //               [--stats FILE.json] [--threads N]
 #include "core/atomic_file.h"
 #include "core/cli_main.h"
+#include "core/medial_surface.h"
 #include "core/mesh_io.h"
 #include "core/mesh_topology.h"
+#include "core/timer.h"
 #include "skeletonize/poles.h"
 #include "skeletonize/union_topology.h"
 
-#include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
-#include <chrono>
-#include <filesystem>
-#include <fstream>
-#include <functional>
-#include <iomanip>
-#include <memory>
+#include <iostream>
+#include <string>
 
 namespace {
 
@@ -34,16 +31,6 @@ void parse_samples(const std::string& samples, mg::skeletonize::SkeletonOptions&
     throw mg::InvalidInput("--samples: expected vertices, midpoints or a count, got '" + samples +
                            "'");
   opt.random_samples = std::stoul(samples);
-}
-
-/// Writes a text file at `temp` (reported as `target` in messages). @throws IoError
-void write_text(const std::string& temp, const std::string& target,
-                const std::function<void(std::ostream&)>& write) {
-  std::ofstream out(temp, std::ios::binary);
-  if (!out) throw mg::IoError(target + ": cannot open for writing");
-  write(out);
-  out.flush();
-  if (!out) throw mg::IoError(target + ": write failed");
 }
 
 nlohmann::ordered_json stats_json(const std::string& input, const std::string& sampling,
@@ -115,45 +102,34 @@ int skeletonize_main(int argc, char** argv) {
   app.add_flag("--connectivity", opt.connectivity,
                "write the regular triangulation's edges and triangles inside the object");
   app.add_option("--stats", stats_path, "write statistics as JSON");
-  app.add_option("--threads", threads, "worker threads (0 = all cores)")
-      ->check(mg::NonNegative);
+  app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(mg::NonNegative);
   mg::parse_command_line(app, argc, argv);
 
   parse_samples(samples, opt);
   mg::check_output_path(output, {input});
   if (!stats_path.empty()) {
     mg::check_output_path(stats_path, {input});
-    if (std::filesystem::weakly_canonical(stats_path) == std::filesystem::weakly_canonical(output))
+    if (mg::same_file(stats_path, output))
       throw mg::InvalidInput(stats_path + ": --stats names the output file");
   }
-  std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(threads));
+  const auto limit = mg::limit_threads(threads);
 
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+  const mg::Stopwatch clock;
   const mg::PolygonSoup mesh = mg::read_polygon_soup(input);
   const mg::skeletonize::Skeleton skeleton = mg::skeletonize::skeletonize(mesh, opt, input);
-  const auto t1 = Clock::now();
+  const mg::Stopwatch union_clock;
   const mg::skeletonize::UnionTopology ut = mg::skeletonize::union_topology(skeleton.atoms);
-  const double seconds_union = std::chrono::duration<double>(Clock::now() - t1).count();
-  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double seconds_union = union_clock.seconds();
+  const double seconds = clock.seconds();
   const mg::MeshTopology mt = mg::mesh_topology(mesh);
 
-  // Both files appear, or neither: each is written to a temporary file, renamed at the end.
-  mg::AtomicFile ma_file(output);
-  write_text(ma_file.temp_path(), output,
-             [&](std::ostream& out) { mg::format_medial_surface(out, skeleton.atoms); });
-  std::unique_ptr<mg::AtomicFile> stats_file;
-  if (!stats_path.empty()) {
-    stats_file = std::make_unique<mg::AtomicFile>(stats_path);
-    const auto j = stats_json(input, samples, skeleton, opt, ut, mt, seconds_union, seconds);
-    write_text(stats_file->temp_path(), stats_path,
-               [&](std::ostream& out) { out << std::setw(2) << j << '\n'; });
-  }
-  ma_file.commit();
-  if (stats_file) stats_file->commit();
+  // Both files appear, or neither.
+  mg::write_files_together(
+      {{output, [&](std::ostream& out) { mg::format_medial_surface(out, skeleton.atoms); }},
+       {stats_path, [&](std::ostream& out) {
+          mg::print_json(out,
+                         stats_json(input, samples, skeleton, opt, ut, mt, seconds_union, seconds));
+        }}});
   if (ut.components != mt.components || ut.euler != mt.euler)
     std::cerr << "skeletonize: warning: " << input << ": the union of the atoms has "
               << ut.components << " component(s) and Euler characteristic " << ut.euler

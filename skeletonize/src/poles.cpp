@@ -1,24 +1,19 @@
-// Inner Voronoi poles of a closed mesh: the CGAL translation unit of mg::skeletonize for the
-// Delaunay triangulation, circumcentres, inside tests and distances.
+// skeletonize(): the inner Voronoi poles of a closed mesh, the pipeline (samples -> Delaunay
+// triangulation -> poles -> merging and pruning -> distances and clamping -> connectivity).
+// The CGAL translation unit of mg::skeletonize for the Delaunay triangulation.
 #include "skeletonize/poles.h"
 
+#include "ball_tree.h"
+#include "circumcentres.h"
 #include "core/errors.h"
-#include "core/random.h"
 #include "core/timer.h"
-#include "core/mesh_topology.h"
+#include "samples.h"
 #include "skeletonize/union_topology.h"
 
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Exact_rational.h>
 #include <CGAL/Interval_nt.h>
-#include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
-#include <CGAL/constructions/kernel_ftC3.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -34,127 +29,15 @@ namespace {
 using K = CGAL::Epick;
 using Point = K::Point_3;
 using Vec3 = Eigen::Vector3d;
-// The Delaunay triangulation is built sequentially. CGAL's parallel insertion (Parallel_tag,
-// lock grid) was measured on 100k samples of the bumpy torus: 0.38-0.49 s against 0.55-0.71 s
-// on 2 idle cores, 1.0 s at 1 thread, and 3.0-4.3 s as soon as the 2 cores are shared (load
-// 4): a small gain against a large risk. Everything after it runs in parallel. With CGAL's
-// symbolic perturbation the triangulation does not depend on the insertion order (which CGAL's
-// spatial sort randomises), and nothing below depends on how it stores its cells: results are
-// the same at any thread count.
+// The Delaunay triangulation is built sequentially (CGAL's parallel insertion gains little on
+// 2 cores and loses much as soon as they are shared: docs/performance.md). Everything after it
+// runs in parallel. With CGAL's symbolic perturbation the triangulation does not depend on the
+// insertion order (which CGAL's spatial sort randomises), and nothing below depends on how it
+// stores its cells: results are the same at any thread count.
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
 using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb>>;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
-using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-using Inside = CGAL::Side_of_triangle_mesh<SurfaceMesh, K, CGAL::Default, Tree>;
+
 Point to_point(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
-
-/// Draw k of the random samples' stream: depends only on (seed, k).
-double uniform(std::uint64_t seed, std::uint64_t k) {
-  return unit_interval(mix64(seed * kSplitmixIncrement + k + 0x632be59bd9b4e019ULL));
-}
-
-void check_mesh(const PolygonSoup& mesh, const std::string& name) {
-  if (mesh.faces.empty()) throw InvalidInput(name + ": empty mesh (no faces)");
-  validate_soup(mesh, name);
-  const MeshTopology t = mesh_topology(mesh);
-  if (!t.manifold) throw InvalidInput(name + ": non-manifold mesh: " + t.first_problem);
-  if (!t.closed)
-    throw InvalidInput(name + ": open mesh (" + std::to_string(t.boundary_edges) +
-                       " boundary edges): poles need a closed surface");
-  if (!t.oriented) throw InvalidInput(name + ": " + t.first_problem);
-}
-
-/// Triangles of the mesh (polygons fanned) as a CGAL surface mesh.
-SurfaceMesh triangle_mesh(const PolygonSoup& soup) {
-  SurfaceMesh sm;
-  std::vector<SurfaceMesh::Vertex_index> v;
-  v.reserve(soup.points.size());
-  for (const auto& p : soup.points) v.push_back(sm.add_vertex(to_point(p)));
-  for (const auto& t : fan_triangles(soup).corners) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
-  return sm;
-}
-
-std::vector<Vec3> make_samples(const PolygonSoup& mesh, const SkeletonOptions& opt) {
-  std::vector<Vec3> samples;
-  std::vector<char> used(mesh.points.size(), 0);
-  for (const auto& f : mesh.faces)
-    for (int v : f) used[v] = 1;
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    if (used[i]) samples.push_back(mesh.points[i]);
-  if (opt.edge_midpoints) {
-    std::vector<std::pair<int, int>> edges;
-    for (const auto& f : mesh.faces)
-      for (std::size_t i = 0; i < f.size(); ++i)
-        edges.push_back(std::minmax(f[i], f[(i + 1) % f.size()]));
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-    for (const auto& [a, b] : edges) samples.push_back((mesh.points[a] + mesh.points[b]) / 2);
-  }
-  if (opt.random_samples > 0) {
-    const std::vector<std::array<int, 3>> tris = fan_triangles(mesh).corners;
-    std::vector<double> cumulative;
-    double total = 0;
-    for (const auto& t : tris) {
-      total += (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]).norm() / 2;
-      cumulative.push_back(total);
-    }
-    for (std::size_t k = 0; k < opt.random_samples; ++k) {
-      const double pick = uniform(opt.seed, 3 * k) * total;
-      const std::size_t t = std::min<std::size_t>(
-          std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(),
-          tris.size() - 1);
-      double u = uniform(opt.seed, 3 * k + 1), v = uniform(opt.seed, 3 * k + 2);
-      if (u + v > 1) {
-        u = 1 - u;
-        v = 1 - v;
-      }
-      const Vec3& a = mesh.points[tris[t][0]];
-      samples.push_back(a + u * (mesh.points[tris[t][1]] - a) + v * (mesh.points[tris[t][2]] - a));
-    }
-  }
-  return samples;
-}
-
-/// Circumcentre of the cell (p[0], p[1], p[2], p[3]) in interval arithmetic (a guaranteed
-/// enclosure, unlike a residual check: a wrong centre on the axis of 4 nearly cocircular points
-/// passes equal-distance checks). False when the interval is wider than 1e-10 of the centre's
-/// offset from p[0] or of the cell's size: the caller then computes it exactly.
-/// @pre FPU rounding upward (CGAL::Protect_FPU_rounding<true>)
-bool interval_circumcentre(const std::array<Vec3, 4>& p, Vec3& out) {
-  using I = CGAL::Interval_nt<false>;
-  I nx, ny, nz, den;
-  CGAL::determinants_for_circumcenterC3(
-      I(p[0].x()), I(p[0].y()), I(p[0].z()), I(p[1].x()), I(p[1].y()), I(p[1].z()), I(p[2].x()),
-      I(p[2].y()), I(p[2].z()), I(p[3].x()), I(p[3].y()), I(p[3].z()), nx, ny, nz, den);
-  if (!(den.inf() > 0 || den.sup() < 0)) return false;
-  const I inv = I(1) / (I(2) * den);
-  const I off[3] = {nx * inv, -(ny * inv), nz * inv};
-  double width = 0, size = 0;
-  for (int k = 0; k < 3; ++k) {
-    if (!std::isfinite(off[k].inf()) || !std::isfinite(off[k].sup())) return false;
-    width = std::max(width, off[k].sup() - off[k].inf());
-    size = std::max(size, std::abs(CGAL::to_double(off[k])));
-    for (int j = 1; j < 4; ++j) size = std::max(size, std::abs(p[j][k] - p[0][k]));
-  }
-  if (!(width <= 1e-10 * size)) return false;
-  out = p[0] + Vec3(CGAL::to_double(off[0]), CGAL::to_double(off[1]), CGAL::to_double(off[2]));
-  return true;
-}
-
-/// The exact circumcentre, rounded to doubles. False when it is not a finite double.
-bool exact_circumcentre(const std::array<Vec3, 4>& p, Vec3& out) {
-  using Q = CGAL::Exact_rational;
-  Q nx, ny, nz, den;
-  CGAL::determinants_for_circumcenterC3(
-      Q(p[0].x()), Q(p[0].y()), Q(p[0].z()), Q(p[1].x()), Q(p[1].y()), Q(p[1].z()), Q(p[2].x()),
-      Q(p[2].y()), Q(p[2].z()), Q(p[3].x()), Q(p[3].y()), Q(p[3].z()), nx, ny, nz, den);
-  if (CGAL::is_zero(den)) return false;  // cannot happen for a Delaunay cell (exact orientation)
-  const Q inv = Q(1) / (Q(2) * den);
-  out = Vec3(CGAL::to_double(Q(p[0].x()) + nx * inv), CGAL::to_double(Q(p[0].y()) - ny * inv),
-             CGAL::to_double(Q(p[0].z()) + nz * inv));
-  return out.allFinite();
-}
 
 /// Integer grid cell of a point for neighbour lookups at spacing h.
 struct GridKey {
@@ -171,155 +54,7 @@ GridKey grid_key(const Vec3& p, double h) {
           static_cast<long>(std::floor(p.z() / h))};
 }
 
-/// Static bounding-volume hierarchy over balls (median splits of centres and radii; each node
-/// keeps the box of its centres, its largest radius and a sphere enclosing its balls).
-class BallTree {
- public:
-  explicit BallTree(const std::vector<MedialAtom>& balls) : balls_(balls), index_(balls.size()) {
-    std::iota(index_.begin(), index_.end(), 0);
-    if (!balls.empty()) build(0, static_cast<int>(balls.size()));
-  }
-
-  /// Calls visit(j), in a fixed order, for every ball j that meets the ball (c, r), until visit
-  /// returns true. Returns whether it did.
-  template <class Visit>
-  bool find_meeting(const Vec3& c, double r, Visit&& visit) const {
-    return search(
-        [&](const Node& n) {
-          const double reach = n.max_radius + r;
-          return n.box.squaredExteriorDistance(c) <= reach * reach;
-        },
-        [&](int j) {
-          const double reach = balls_[j].radius + r;
-          return (balls_[j].centre - c).squaredNorm() <= reach * reach;
-        },
-        visit);
-  }
-
-  /// The same for every ball j that contains the ball (c, r) up to `slack`:
-  /// |c - c_j| + r <= r_j + slack.
-  template <class Visit>
-  bool find_containing(const Vec3& c, double r, double slack, Visit&& visit) const {
-    return search(
-        [&](const Node& n) {
-          const double reach = n.max_radius - r + slack, room = n.sphere_radius + slack - r;
-          return reach >= 0 && room >= 0 && n.box.squaredExteriorDistance(c) <= reach * reach &&
-                 (c - n.sphere_centre).squaredNorm() <= room * room;
-        },
-        [&](int j) { return (balls_[j].centre - c).norm() + r <= balls_[j].radius + slack; },
-        visit);
-  }
-
- private:
-  struct Node {
-    Eigen::AlignedBox3d box;
-    double max_radius = 0;
-    Vec3 sphere_centre = Vec3::Zero();
-    double sphere_radius = 0;
-    int begin = 0, end = 0, left = -1, right = -1;
-  };
-
-  template <class NodeTest, class BallTest, class Visit>
-  bool search(NodeTest&& node_may_hold, BallTest&& ball_matches, Visit&& visit) const {
-    if (nodes_.empty()) return false;
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[stack[--top]];
-      if (!node_may_hold(n)) continue;
-      if (n.left < 0) {
-        for (int k = n.begin; k < n.end; ++k)
-          if (ball_matches(index_[k]) && visit(index_[k])) return true;
-      } else {
-        stack[top++] = n.right;
-        stack[top++] = n.left;
-      }
-    }
-    return false;
-  }
-
-  int build(int begin, int end) {
-    const int id = static_cast<int>(nodes_.size());
-    nodes_.emplace_back();
-    Node n;
-    n.begin = begin;
-    n.end = end;
-    for (int k = begin; k < end; ++k) {
-      n.box.extend(balls_[index_[k]].centre);
-      n.max_radius = std::max(n.max_radius, balls_[index_[k]].radius);
-    }
-    n.sphere_centre = n.box.center();
-    for (int k = begin; k < end; ++k) {
-      const MedialAtom& b = balls_[index_[k]];
-      n.sphere_radius = std::max(n.sphere_radius, (b.centre - n.sphere_centre).norm() + b.radius);
-    }
-    n.sphere_radius *= 1 + 1e-12;  // the rounding of the norms above
-    if (end - begin > 16) {
-      // Split the longest of the four extents (x, y, z, radius): nodes of similar radii keep
-      // the containment bound max_radius - r tight.
-      double min_radius = INFINITY;
-      for (int k = begin; k < end; ++k) min_radius = std::min(min_radius, balls_[index_[k]].radius);
-      int axis = 0;
-      const double extent = n.box.sizes().maxCoeff(&axis);
-      if (n.max_radius - min_radius > extent) axis = 3;
-      auto key = [&](int a) { return axis < 3 ? balls_[a].centre[axis] : balls_[a].radius; };
-      const int mid = (begin + end) / 2;
-      std::nth_element(
-          index_.begin() + begin, index_.begin() + mid, index_.begin() + end,
-          [&](int a, int b) { return key(a) < key(b) || (key(a) == key(b) && a < b); });
-      n.left = build(begin, mid);
-      n.right = build(mid, end);
-    }
-    nodes_[id] = n;
-    return id;
-  }
-
-  const std::vector<MedialAtom>& balls_;
-  std::vector<int> index_;
-  std::vector<Node> nodes_;
-};
-
 }  // namespace
-
-struct SolidQuery::Impl {
-  SurfaceMesh surface;
-  std::unique_ptr<Tree> tree;
-  std::unique_ptr<Inside> inside;
-};
-
-SolidQuery::SolidQuery(const PolygonSoup& mesh) : impl_(std::make_unique<Impl>()) {
-  impl_->surface = triangle_mesh(mesh);
-  impl_->tree = std::make_unique<Tree>(faces(impl_->surface).first, faces(impl_->surface).second,
-                                       impl_->surface);
-  impl_->tree->build();
-  impl_->tree->accelerate_distance_queries();
-  impl_->inside = std::make_unique<Inside>(*impl_->tree);
-}
-
-SolidQuery::~SolidQuery() = default;
-
-bool SolidQuery::contains(const Vec3& p) const {
-  return (*impl_->inside)(to_point(p)) == CGAL::ON_BOUNDED_SIDE;
-}
-
-double SolidQuery::distance(const Vec3& p) const {
-  return std::sqrt(impl_->tree->squared_distance(to_point(p)));
-}
-
-double SolidQuery::distance(const Vec3& p, const Vec3& hint) const {
-  return std::sqrt(impl_->tree->squared_distance(to_point(p), to_point(hint)));
-}
-
-bool SolidQuery::segment_inside(const Vec3& a, const Vec3& b) const {
-  return !impl_->tree->do_intersect(K::Segment_3(to_point(a), to_point(b))) &&
-         contains((a + b) / 2);
-}
-
-bool SolidQuery::triangle_inside(const Vec3& a, const Vec3& b, const Vec3& c) const {
-  return !impl_->tree->do_intersect(K::Triangle_3(to_point(a), to_point(b), to_point(c))) &&
-         contains((a + b + c) / 3);
-}
 
 namespace {
 
@@ -330,14 +65,14 @@ class Skeletonizer {
 
   Skeleton run() {
     Stopwatch t;
-    check_mesh(mesh_, name_);
+    detail::check_closed_mesh(mesh_, name_);
     if (!std::isfinite(opt_.merge_tol)) throw InvalidInput("merge tolerance must be finite");
     if (!(opt_.isolated_fraction >= 0 && std::isfinite(opt_.isolated_fraction)))
       throw InvalidInput("isolated-ball fraction must be finite and >= 0");
     out_.stats.diagonal = bbox_diagonal(mesh_.points);
     tol_ = opt_.merge_tol >= 0 ? opt_.merge_tol : 1e-3 * out_.stats.diagonal;
     out_.stats.merge_tol = tol_;
-    out_.samples = make_samples(mesh_, opt_);
+    out_.samples = detail::make_samples(mesh_, opt_);
     out_.stats.samples = out_.samples.size();
     deduplicate();
     solid_ = std::make_unique<SolidQuery>(mesh_);
@@ -424,14 +159,14 @@ class Skeletonizer {
                         {
                           CGAL::Protect_FPU_rounding<true> upward;
                           for (std::size_t i = range.begin(); i != range.end(); ++i)
-                            if (interval_circumcentre(corners(i), centre_[i]))
+                            if (detail::interval_circumcentre(corners(i), centre_[i]))
                               valid_[i] = 1;
                             else
                               hard.push_back(i);
                         }
                         for (std::size_t i : hard) {
                           exact[i] = 1;
-                          valid_[i] = exact_circumcentre(corners(i), centre_[i]);
+                          valid_[i] = detail::exact_circumcentre(corners(i), centre_[i]);
                         }
                       });
     out_.stats.exact_circumcentres =
@@ -534,7 +269,7 @@ class Skeletonizer {
   /// (containers are kept balls, so there are no chains). Atoms are in decreasing radius.
   void prune_contained() {
     const auto& atoms = out_.atoms.atoms;
-    const BallTree tree(atoms);
+    const detail::BallTree tree(atoms);
     auto contains = [&](std::size_t i, auto&& accept) {
       int found = -1;
       tree.find_containing(atoms[i].centre, atoms[i].radius, tol_ / 2, [&](int j) {
@@ -622,7 +357,7 @@ class Skeletonizer {
   std::vector<int> small_groups() const {
     const auto& atoms = out_.atoms.atoms;
     const double small = opt_.isolated_fraction * out_.stats.diagonal;
-    const BallTree tree(atoms);
+    const detail::BallTree tree(atoms);
     std::vector<int> target(atoms.size(), -1);
     const int largest = static_cast<int>(
         std::max_element(atoms.begin(), atoms.end(),

@@ -50,7 +50,11 @@ TEST(Skeletonize, SphereGivesOneAtomAtItsCentre) {
   EXPECT_LT(c.atoms.atoms[0].radius, R);
   EXPECT_GT(c.atoms.atoms[0].radius, 0.99 * R);
   EXPECT_EQ(c.stats.worst_overshoot, 0.0);
-  EXPECT_GE(c.stats.pole_overshoot, 0.0);
+  // The pole's ball pokes out of the inscribed polyhedron by what clamping took off it.
+  EXPECT_GT(c.stats.pole_overshoot, 0.0);
+  EXPECT_DOUBLE_EQ(c.stats.pole_overshoot, s.atoms.atoms[0].radius - c.atoms.atoms[0].radius);
+  EXPECT_DOUBLE_EQ(s.stats.pole_overshoot, c.stats.pole_overshoot);
+  EXPECT_DOUBLE_EQ(s.stats.worst_overshoot, s.stats.pole_overshoot);  // unclamped: the same ball
 }
 
 TEST(Skeletonize, ExactTorusGivesSixtyAtomsOnTheCoreCircle) {

@@ -33,7 +33,8 @@ class AtomicFile {
 /// Writes `path` through an AtomicFile: `write` fills the stream (opened in binary mode); an
 /// exception from `write` or a failed stream leaves no file.
 /// @throws IoError if the file cannot be opened, written or moved into place
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
 
 /// @throws InvalidInput if `output` names the same file as one of `inputs` (never overwrite an
 /// input), or if `output`'s folder does not exist.

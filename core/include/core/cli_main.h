@@ -7,13 +7,16 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 
+#include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstddef>
 #include <exception>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -96,6 +99,36 @@ inline void print_json(std::ostream& out, const nlohmann::ordered_json& j) {
 /// Writes a JSON report through a temporary file renamed at the end. @throws IoError
 inline void write_json(const nlohmann::ordered_json& j, const std::string& path) {
   write_file_atomically(path, [&](std::ostream& out) { print_json(out, j); });
+}
+
+/// True if the two paths name the same file, whether it exists yet or not (their weakly
+/// canonical forms are equal): "out.ma" and "./out.ma" do.
+inline bool same_file(const std::string& a, const std::string& b) {
+  return std::filesystem::weakly_canonical(a) == std::filesystem::weakly_canonical(b);
+}
+
+/// One file of write_files_together(): where, and what fills it.
+struct OutputFile {
+  std::string path;                          ///< empty: not wanted, skipped
+  std::function<void(std::ostream&)> write;  ///< fills the stream (opened in binary mode)
+};
+
+/// Writes files that appear together or not at all (a result and its --stats report): each is
+/// written to a temporary file beside its target, then all are renamed, in the order given.
+/// An exception while writing any of them leaves none.
+/// @throws IoError naming the target that cannot be opened, written or moved into place
+inline void write_files_together(const std::vector<OutputFile>& files) {
+  std::vector<std::unique_ptr<AtomicFile>> written;
+  for (const OutputFile& file : files) {
+    if (file.path.empty()) continue;
+    written.push_back(std::make_unique<AtomicFile>(file.path));
+    std::ofstream out(written.back()->temp_path(), std::ios::binary);
+    if (!out) throw IoError(file.path + ": cannot open for writing");
+    file.write(out);
+    out.flush();
+    if (!out) throw IoError(file.path + ": write failed");
+  }
+  for (const auto& file : written) file->commit();
 }
 
 }  // namespace mg

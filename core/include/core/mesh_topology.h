@@ -10,8 +10,8 @@
 namespace mg {
 
 struct MeshTopology {
-  std::size_t vertices = 0;              ///< vertices referenced by at least one face
-  std::size_t edges = 0;                 ///< distinct undirected edges
+  std::size_t vertices = 0;  ///< vertices referenced by at least one face
+  std::size_t edges = 0;     ///< distinct undirected edges
   std::size_t faces = 0;
   std::size_t boundary_edges = 0;        ///< used by exactly one face
   std::size_t nonmanifold_edges = 0;     ///< used by three or more faces

@@ -4,15 +4,15 @@
 /// of the atoms' spheres and cones, whose boundary the garbing aims at. This judges a mesher
 /// apart from the atoms' own error (the distance from G to the original object).
 
-#include "evaluate/distances.h"
 #include "core/medial_surface.h"
+#include "evaluate/distances.h"
 #include "garbing/target_shape.h"
 
 namespace mg::evaluate {
 
 struct AtomsDistanceOptions {
   garbing::ConeOptions cones;  ///< which cones join the spheres in G (as `garb --cones`)
-  std::size_t samples = 0;  ///< per side; 0 = max(1e5, 10 V_mesh)
+  std::size_t samples = 0;     ///< per side; 0 = max(1e5, 10 V_mesh)
   std::uint64_t seed = 1;
 };
 

@@ -5,9 +5,9 @@
 /// 0), quads split along their shorter diagonal, faces turned outward (OpenVDB's come out
 /// inward). Plus the voxel searches that match a vertex count or a Hausdorff distance.
 
-#include "evaluate/mesh_distance.h"
 #include "core/medial_surface.h"
 #include "core/mesh.h"
+#include "evaluate/mesh_distance.h"
 
 #include <cstddef>
 #include <vector>

@@ -14,9 +14,9 @@ namespace mg::garbing {
 
 /// One face of M1: an axis-aligned square of the octree lattice.
 struct CoarseFace {
-  int axis = 0;    ///< normal axis in the root frame (0, 1, 2)
-  int sign = 1;    ///< +1 or -1: the normal points along sign * axis, out of the active leaf
-  int level = 0;   ///< the square's side is Octree::side(level)
+  int axis = 0;   ///< normal axis in the root frame (0, 1, 2)
+  int sign = 1;   ///< +1 or -1: the normal points along sign * axis, out of the active leaf
+  int level = 0;  ///< the square's side is Octree::side(level)
   /// Minimal corner of the square in lattice units at `level` (component `axis` = its plane).
   std::array<std::int64_t, 3> corner = {0, 0, 0};
   int owner = -1;  ///< the active leaf the face bounds (index in Octree::cells)
@@ -29,8 +29,8 @@ struct CoarseMesh {
   Mesh mesh;
   std::vector<CoarseFace> faces;              ///< per mesh face, same order
   std::vector<Eigen::Vector3d> face_centres;  ///< centre of each face's square, world
-  std::size_t hanging_corners = 0;   ///< corners inserted into coarser faces' loops
-  std::size_t split_vertices = 0;    ///< extra vertex copies made at non-manifold places
+  std::size_t hanging_corners = 0;            ///< corners inserted into coarser faces' loops
+  std::size_t split_vertices = 0;             ///< extra vertex copies made at non-manifold places
   /// Midpoints given to each side of an edge where two sheets touch along the edge but are
   /// joined around both its ends (a double edge otherwise); such a midpoint has valence 2.
   std::size_t pinch_midpoints = 0;

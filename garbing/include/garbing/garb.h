@@ -27,10 +27,10 @@ struct GarbSeconds {
 
 /// Every stage's result, in the order they are computed.
 struct Garbing {
-  TargetShape g;      ///< in the atoms' bounding cube frame
-  Octree tree;        ///< step 1
-  CoarseMesh m1;      ///< step 2, world coordinates
-  RefinedMesh m2;     ///< step 3, world coordinates, with its statistics
+  TargetShape g;   ///< in the atoms' bounding cube frame
+  Octree tree;     ///< step 1
+  CoarseMesh m1;   ///< step 2, world coordinates
+  RefinedMesh m2;  ///< step 3, world coordinates, with its statistics
   GarbSeconds seconds;
 };
 

@@ -32,8 +32,8 @@ struct OctreeOptions {
 struct OctreeCell {
   int level = 0;
   std::array<std::uint32_t, 3> ijk = {0, 0, 0};
-  int parent = -1;        ///< index in Octree::cells; -1 for the root
-  int first_child = -1;   ///< children are cells first_child .. first_child + 7; -1 for a leaf
+  int parent = -1;       ///< index in Octree::cells; -1 for the root
+  int first_child = -1;  ///< children are cells first_child .. first_child + 7; -1 for a leaf
   bool inside_one_ball = false;  ///< the closed cube lies inside one closed ball
   std::vector<int> spheres;      ///< Spheres(c): atoms whose closed ball meets the closed cube
   /// Cones(c): the cones of G (index k: primitive id sphere_count + k) whose solid meets the
@@ -50,17 +50,17 @@ struct OctreeCell {
 struct Octree {
   /// G's frame: world = frame.to_world(local), the root cube is local [0, root_side]^3.
   Frame frame;
-  double root_side = 0;      ///< model units: the tight cube around the balls, no padding
-  double rc = 0;             ///< characteristic radius (rmin + rmax) / 2, model units
-  int min_depth = 0;         ///< d actually used
-  int max_depth = 0;         ///< the safety stop given
-  int depth = 0;             ///< deepest level present
-  bool hit_max_depth = false;        ///< a criterion wanted to split a cell at max_depth
+  double root_side = 0;        ///< model units: the tight cube around the balls, no padding
+  double rc = 0;               ///< characteristic radius (rmin + rmax) / 2, model units
+  int min_depth = 0;           ///< d actually used
+  int max_depth = 0;           ///< the safety stop given
+  int depth = 0;               ///< deepest level present
+  bool hit_max_depth = false;  ///< a criterion wanted to split a cell at max_depth
   std::array<long, 4> splits = {0, 0, 0, 0};  ///< cells split by criterion k (first reason)
-  std::vector<OctreeCell> cells;     ///< cells[0] is the root
-  std::vector<int> leaves;           ///< leaf indices, sorted by (Morton order, level)
+  std::vector<OctreeCell> cells;              ///< cells[0] is the root
+  std::vector<int> leaves;                    ///< leaf indices, sorted by (Morton order, level)
 
-  double side(int level) const;                             ///< cube side at `level`
+  double side(int level) const;  ///< cube side at `level`
   /// The closed cube of a cell in the root frame: [ijk, ijk + 1] * side(level).
   Eigen::AlignedBox3d cube(const OctreeCell& cell) const;
   Eigen::Vector3d to_local(const Eigen::Vector3d& world) const { return frame.to_local(world); }

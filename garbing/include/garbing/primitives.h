@@ -29,10 +29,10 @@ Crease crease(double length, double r1, double r2);
 /// The solid cone tangent to two intersecting balls (c1, r1), (c2, r2), L > |r1 - r2|: the
 /// truncated cone between the two tangent circles. Axial coordinate x from c1 along u.
 struct Cone {
-  int a = -1, b = -1;         ///< atom indices
-  Eigen::Vector3d c1, u;      ///< first centre, unit axis toward the second
-  double r1 = 0, length = 0;  ///< first radius, L = |c2 - c1|
-  double r2 = 0;              ///< second radius
+  int a = -1, b = -1;               ///< atom indices
+  Eigen::Vector3d c1, u;            ///< first centre, unit axis toward the second
+  double r1 = 0, length = 0;        ///< first radius, L = |c2 - c1|
+  double r2 = 0;                    ///< second radius
   double sin_phi = 0, cos_phi = 1;  ///< sin(phi) = (r1 - r2) / L
   double t_lo = 0, t_hi = 0;        ///< axial range of the lateral surface
   double rho_lo = 0, rho_hi = 0;    ///< its radius at t_lo and t_hi
@@ -72,8 +72,8 @@ Eigen::Vector3d migration_vector(const Cone& cone, const Eigen::Vector3d& v);
 /// cone's solid); false if the line misses it. @param d need not be unit; t in units of |d|
 bool line_interval(const MedialAtom& ball, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
                    double& t0, double& t1);
-bool line_interval(const Cone& cone, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                   double& t0, double& t1);
+bool line_interval(const Cone& cone, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& t0,
+                   double& t1);
 
 /// Whether p lies strictly deeper than `eps` inside the ball (resp. the cone's solid), model
 /// units; a negative eps grows the primitive.

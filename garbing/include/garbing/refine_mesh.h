@@ -45,7 +45,7 @@ struct RefineStats {
   std::size_t intersecting_after = 0, degenerate_after = 0;
   std::size_t repaired_vertices = 0;  ///< vertices moved by the repair (on G or pulled back)
   std::size_t pulled_back = 0;        ///< pull-back steps taken (leave a vertex off G)
-  std::size_t left_off_g = 0;  ///< vertices the repair's stages 2-3 left off G (pulled back)
+  std::size_t left_off_g = 0;         ///< vertices the repair's stages 2-3 left off G (pulled back)
   /// The dual, migration, triangulation, gap splitting and subdivision; the fold check and
   /// repair. Seconds.
   double seconds_migration = 0, seconds_repair = 0;

@@ -151,8 +151,8 @@ class TargetShape {
  private:
   struct Bvh;
   Frame frame_;
-  MedialSurface atoms_;                                    // the balls, in frame_ (no connectivity)
-  std::vector<Cone> cones_;                                // in frame_
+  MedialSurface atoms_;                                   // the balls, in frame_ (no connectivity)
+  std::vector<Cone> cones_;                               // in frame_
   std::vector<int> cones_by_atom_start_, cones_by_atom_;  // CSR: atom -> its cones' ids
   std::unique_ptr<Bvh> bvh_;
 };

@@ -6,6 +6,7 @@
 
 #include "core/medial_surface.h"
 #include "core/mesh.h"
+#include "skeletonize/solid_query.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -64,32 +65,6 @@ struct Skeleton {
   std::vector<Eigen::Vector3d> samples;  ///< the samples used, model units
   std::vector<int> atom_of_sample;       ///< the atom each sample's pole became; -1: none
   SkeletonStats stats;
-};
-
-/// Inside tests and distances for a closed mesh (CGAL Side_of_triangle_mesh and AABB tree
-/// over its triangles). Immutable after construction; queries are thread-safe.
-class SolidQuery {
- public:
-  /// @pre a closed mesh (polygons are fan-triangulated), indices in range
-  explicit SolidQuery(const PolygonSoup& mesh);
-  ~SolidQuery();
-  SolidQuery(const SolidQuery&) = delete;
-  SolidQuery& operator=(const SolidQuery&) = delete;
-  /// Strictly inside the solid the mesh bounds.
-  bool contains(const Eigen::Vector3d& p) const;
-  /// Unsigned distance to the mesh, model units.
-  double distance(const Eigen::Vector3d& p) const;
-  /// The same, starting the search from `hint`, a point on the mesh (a sample) near the answer.
-  double distance(const Eigen::Vector3d& p, const Eigen::Vector3d& hint) const;
-  /// Segment [a, b] meets no mesh face and its midpoint is inside.
-  bool segment_inside(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
-  /// Triangle (a, b, c) meets no mesh face and its centroid is inside.
-  bool triangle_inside(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                       const Eigen::Vector3d& c) const;
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
 };
 
 /// Inner poles of a closed mesh. Output is identical at any thread count and for any vertex or

@@ -18,8 +18,8 @@ namespace mg::detail {
 /// The cells [lo, hi] (per axis) that the closed box b overlaps on a grid of side h. False,
 /// and nothing to rely on, when b spans more than `max_cells` cells or a coordinate is not
 /// finite or too far out for 64-bit cell numbers: callers treat such a box as near everything.
-inline bool cell_range(const Eigen::AlignedBox3d& b, double h, std::int64_t lo[3], std::int64_t hi[3],
-                       double max_cells = 64) {
+inline bool cell_range(const Eigen::AlignedBox3d& b, double h, std::int64_t lo[3],
+                       std::int64_t hi[3], double max_cells = 64) {
   double cells = 1;
   for (int a = 0; a < 3; ++a) {
     const double l = std::floor(b.min()[a] / h), u = std::floor(b.max()[a] / h);
@@ -34,7 +34,8 @@ inline bool cell_range(const Eigen::AlignedBox3d& b, double h, std::int64_t lo[3
 /// A cell's key; numbers wrap at 2^21 per axis, so far-apart cells may share a key (aliasing
 /// only adds candidates).
 inline std::uint64_t cell_key(std::int64_t i, std::int64_t j, std::int64_t k) {
-  return (static_cast<std::uint64_t>(i & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
+  return (static_cast<std::uint64_t>(i & 0x1FFFFF) << 42) |
+         (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
          static_cast<std::uint64_t>(k & 0x1FFFFF);
 }
 

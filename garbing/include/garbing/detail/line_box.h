@@ -14,8 +14,9 @@ namespace mg::garbing::detail {
 /// Clips [t0, t1] to the parameters t where o + t d lies in the closed box [lo, hi]; inv_d
 /// is 1 / d per component (infinite where d is 0: that slab keeps the line when o lies in
 /// it). False when nothing is left.
-inline bool clip_line_to_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3d& o,
-                             const Eigen::Vector3d& inv_d, double& t0, double& t1) {
+inline bool clip_line_to_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                             const Eigen::Vector3d& o, const Eigen::Vector3d& inv_d, double& t0,
+                             double& t1) {
   for (int k = 0; k < 3; ++k) {
     double a = (lo[k] - o[k]) * inv_d[k], b = (hi[k] - o[k]) * inv_d[k];
     if (std::isnan(a) || std::isnan(b)) {  // d[k] == 0 and o on a slab plane

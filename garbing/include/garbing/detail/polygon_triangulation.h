@@ -39,8 +39,9 @@ class EdgeSet {
 /// returns true; when every triangulation needs a forbidden diagonal, changes nothing and
 /// returns false. Ties go to the lowest split vertex, so the result is deterministic.
 /// @pre poly.size() >= 3; the polygon's own edges are in `edges` (not needed for a triangle)
-inline bool min_diagonal_triangulation(const std::vector<int>& poly, const std::vector<Eigen::Vector3d>& position,
-                                       EdgeSet& edges, std::vector<std::array<int, 3>>& out) {
+inline bool min_diagonal_triangulation(const std::vector<int>& poly,
+                                       const std::vector<Eigen::Vector3d>& position, EdgeSet& edges,
+                                       std::vector<std::array<int, 3>>& out) {
   const int n = static_cast<int>(poly.size());
   if (n == 3) {
     out.push_back({poly[0], poly[1], poly[2]});
@@ -50,8 +51,9 @@ inline bool min_diagonal_triangulation(const std::vector<int>& poly, const std::
   std::vector<double> length(n * n, 0.0);
   for (int i = 0; i < n; ++i)
     for (int j = i + 2; j < n; ++j)
-      length[i * n + j] =
-          edges.contains(poly[i], poly[j]) ? INFINITY : (position[poly[i]] - position[poly[j]]).norm();
+      length[i * n + j] = edges.contains(poly[i], poly[j])
+                              ? INFINITY
+                              : (position[poly[i]] - position[poly[j]]).norm();
   std::vector<double> cost(n * n, 0.0);
   std::vector<int> split(n * n, -1);
   for (int gap = 2; gap < n; ++gap)

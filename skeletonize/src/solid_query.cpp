@@ -1,0 +1,77 @@
+// SolidQuery: CGAL's AABB tree over the mesh's triangles and Side_of_triangle_mesh.
+#include "skeletonize/solid_query.h"
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cmath>
+
+namespace mg::skeletonize {
+namespace {
+
+using K = CGAL::Epick;
+using Point = K::Point_3;
+using Vec3 = Eigen::Vector3d;
+using SurfaceMesh = CGAL::Surface_mesh<Point>;
+using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+using Inside = CGAL::Side_of_triangle_mesh<SurfaceMesh, K, CGAL::Default, Tree>;
+
+Point to_point(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
+
+/// Triangles of the mesh (polygons fanned) as a CGAL surface mesh.
+SurfaceMesh triangle_mesh(const PolygonSoup& soup) {
+  SurfaceMesh sm;
+  std::vector<SurfaceMesh::Vertex_index> v;
+  v.reserve(soup.points.size());
+  for (const auto& p : soup.points) v.push_back(sm.add_vertex(to_point(p)));
+  for (const auto& t : fan_triangles(soup).corners) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
+  return sm;
+}
+
+}  // namespace
+
+struct SolidQuery::Impl {
+  SurfaceMesh surface;
+  std::unique_ptr<Tree> tree;
+  std::unique_ptr<Inside> inside;
+};
+
+SolidQuery::SolidQuery(const PolygonSoup& mesh) : impl_(std::make_unique<Impl>()) {
+  impl_->surface = triangle_mesh(mesh);
+  impl_->tree = std::make_unique<Tree>(faces(impl_->surface).first, faces(impl_->surface).second,
+                                       impl_->surface);
+  impl_->tree->build();
+  impl_->tree->accelerate_distance_queries();
+  impl_->inside = std::make_unique<Inside>(*impl_->tree);
+}
+
+SolidQuery::~SolidQuery() = default;
+
+bool SolidQuery::contains(const Vec3& p) const {
+  return (*impl_->inside)(to_point(p)) == CGAL::ON_BOUNDED_SIDE;
+}
+
+double SolidQuery::distance(const Vec3& p) const {
+  return std::sqrt(impl_->tree->squared_distance(to_point(p)));
+}
+
+double SolidQuery::distance(const Vec3& p, const Vec3& hint) const {
+  return std::sqrt(impl_->tree->squared_distance(to_point(p), to_point(hint)));
+}
+
+bool SolidQuery::segment_inside(const Vec3& a, const Vec3& b) const {
+  return !impl_->tree->do_intersect(K::Segment_3(to_point(a), to_point(b))) &&
+         contains((a + b) / 2);
+}
+
+bool SolidQuery::triangle_inside(const Vec3& a, const Vec3& b, const Vec3& c) const {
+  return !impl_->tree->do_intersect(K::Triangle_3(to_point(a), to_point(b), to_point(c))) &&
+         contains((a + b + c) / 3);
+}
+
+}  // namespace mg::skeletonize
