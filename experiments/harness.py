@@ -1,6 +1,8 @@
-"""Shared plumbing of the experiment scripts: running the programs, JSON, tables, a job pool.
+"""Shared plumbing of the experiment scripts: running the programs, the manifests, JSON, tables,
+a job pool.
 
-Every number the experiments write comes from a program's JSON output; nothing is typed in.
+Every number the experiments write comes from a program's JSON output or from the paper's tables
+in paper_tables.json; nothing is typed in.
 """
 import concurrent.futures
 import csv
@@ -35,6 +37,10 @@ class Runner:
         os.makedirs(os.path.dirname(p), exist_ok=True)
         return p
 
+    def model(self, name):
+        """The reference model `name` as experiments/models.py materialises it."""
+        return os.path.join(self.build, "models", name + ".off")
+
     def run(self, program, *args, json_out=None, label=""):
         """Runs a program; returns its JSON report (from --stats FILE or stdout --json)."""
         cmd = [self.bin(program), *map(str, args)]
@@ -54,10 +60,29 @@ class Runner:
         data.setdefault("_wall", time.time() - t0)
         return data
 
+    def run_stats(self, program, *args, stats, label=""):
+        """Runs a program with `--stats STATS` last; returns that report."""
+        return self.run(program, *args, "--stats", stats, json_out=stats, label=label)
+
+
+def load_json(name):
+    with open(os.path.join(HERE, name)) as f:
+        return json.load(f)
+
 
 def load_manifest():
-    with open(os.path.join(HERE, "models.json")) as f:
-        return json.load(f)
+    """experiments/models.json: the reference models."""
+    return load_json("models.json")
+
+
+def models_by_name():
+    """The manifest's models, {name: entry}."""
+    return {m["name"]: m for m in load_manifest()["models"]}
+
+
+def paper_tables():
+    """experiments/paper_tables.json: the paper's Tables 1 and 2 and its depth sweep."""
+    return load_json("paper_tables.json")
 
 
 def write_atomically(path, text):
@@ -123,6 +148,6 @@ def log(message):
     print("[%s] %s" % (time.strftime("%H:%M:%S"), message), flush=True)
 
 
-def die(message):
-    print("reproduce: %s" % message, file=sys.stderr, flush=True)
+def die(message, program="reproduce"):
+    print("%s: %s" % (program, message), file=sys.stderr, flush=True)
     sys.exit(1)

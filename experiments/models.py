@@ -17,17 +17,12 @@ import subprocess
 import sys
 import tarfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import ROOT, load_manifest  # noqa: E402
 
 
 class ModelError(RuntimeError):
     pass
-
-
-def load_manifest():
-    with open(os.path.join(HERE, "models.json")) as f:
-        return json.load(f)
 
 
 def cgal_archive(manifest, cache):

@@ -2,26 +2,21 @@
 """The models program at its edges: exit codes, one-line messages, no partial output."""
 import json
 import os
-import subprocess
 import sys
-import tempfile
 import unittest
 
-MODELS = sys.argv.pop(1) if len(sys.argv) > 1 else "models"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "core", "tests", "support"))
+import cli_test_util as U  # noqa: E402
+
+MODELS, = U.programs_from_argv("models")
 
 
 def run(*args):
-    return subprocess.run([MODELS, *args], capture_output=True, text=True)
+    return U.run(MODELS, *args)
 
 
-class ModelsCli(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
+class ModelsCli(U.CliTestCase):
     def test_generate_then_info(self):
         out = os.path.join(self.dir, "t.off")
         r = run("generate", "torus", "--ring", "12", "--tube", "8", "-o", out)

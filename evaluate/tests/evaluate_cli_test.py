@@ -4,17 +4,18 @@ no partial output."""
 import json
 import math
 import os
-import subprocess
 import sys
-import tempfile
 import unittest
 
-EVALUATE = sys.argv.pop(1) if len(sys.argv) > 1 else "evaluate"
-MODELS = sys.argv.pop(1) if len(sys.argv) > 1 else "models"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "core", "tests", "support"))
+import cli_test_util as U  # noqa: E402
+
+EVALUATE, MODELS = U.programs_from_argv("evaluate", "models")
 
 
 def run(*args):
-    return subprocess.run([EVALUATE, *args], capture_output=True, text=True)
+    return U.run(EVALUATE, *args)
 
 
 def run_json(*args):
@@ -24,39 +25,22 @@ def run_json(*args):
     return json.loads(r.stdout)
 
 
-class EvaluateCli(unittest.TestCase):
+class EvaluateCli(U.CliTestCase):
+    shared_folder = True
+    message_prefix = "evaluate: "
+
     @classmethod
     def setUpClass(cls):
-        cls.tmp = tempfile.TemporaryDirectory()
-        cls.dir = cls.tmp.name
+        super().setUpClass()
         for name, args in [("s1.off", ["sphere", "--frequency", "16", "--radius", "1"]),
                            ("s11.off", ["sphere", "--frequency", "16", "--radius", "1.1"]),
                            ("torus.off", ["torus", "--ring", "60", "--tube", "20"])]:
-            subprocess.run([MODELS, "generate", *args, "-o", os.path.join(cls.dir, name)],
-                           check=True)
+            U.generate(MODELS, os.path.join(cls.dir, name), *args)
         with open(os.path.join(cls.dir, "one.ma"), "w") as f:
             f.write("1 0 0\nv 0.5 -0.25 0.125 0.7\n")
 
-    @classmethod
-    def tearDownClass(cls):
-        cls.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w") as f:
-            f.write(text)
-        return self.path(name)
-
-    def assert_refused(self, r, code, message, outputs=()):
-        self.assertEqual(r.returncode, code, r.stderr)
-        self.assertIn(message, r.stderr)
-        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
-        self.assertTrue(r.stderr.startswith("evaluate: "), r.stderr)
-        for o in outputs:
-            self.assertFalse(os.path.exists(o), o)
-        self.assertFalse([f for f in os.listdir(self.dir) if "partial" in f or ".tmp" in f])
+    def is_leftover(self, name):
+        return "partial" in name or ".tmp" in name
 
     # --- distance -------------------------------------------------------------------------
     def test_distance_reports_the_issue_keys(self):
@@ -142,8 +126,7 @@ class EvaluateCli(unittest.TestCase):
     def baseline(self, method, *extra):
         out = self.path(method + ".off")
         j = run_json(method, self.path("one.ma"), "-o", out, *extra)
-        info = subprocess.run([MODELS, "info", out, "--json"], capture_output=True, text=True)
-        info = json.loads(info.stdout)
+        info = json.loads(U.run(MODELS, "info", out, "--json").stdout)
         self.assertEqual(info["vertices"], j["vertices"])
         self.assertEqual(info["faces"], j["faces"])
         self.assertTrue(info["closed"] and info["manifold"] and info["oriented"])
@@ -170,8 +153,7 @@ class EvaluateCli(unittest.TestCase):
 
     def test_vdb_match_hausdorff(self):
         sphere = self.path("atom_sphere.off")
-        subprocess.run([MODELS, "generate", "sphere", "--frequency", "30", "--radius", "0.7",
-                        "-o", sphere], check=True)
+        U.generate(MODELS, sphere, "sphere", "--frequency", "30", "--radius", "0.7")
         # The atom is off the origin: its own sphere mesh is the reference after a shift.
         shifted = self.path("atom_sphere_shifted.off")
         with open(sphere) as f, open(shifted, "w") as g:

@@ -1,45 +1,26 @@
 #!/usr/bin/python3
 """The garb program at its edges: output, stats, exit codes, one-line messages, no partial output."""
 import json
+import math
 import os
-import subprocess
 import sys
-import tempfile
 import unittest
 
-GARB = sys.argv.pop(1) if len(sys.argv) > 1 else "garb"
-MODELS = sys.argv.pop(1) if len(sys.argv) > 1 else "models"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "core", "tests", "support"))
+import cli_test_util as U  # noqa: E402
+
+GARB, MODELS = U.programs_from_argv("garb", "models")
 
 
 def run(*args):
-    return subprocess.run([GARB, *args], capture_output=True, text=True)
+    return U.run(GARB, *args)
 
 
-class GarbCli(unittest.TestCase):
+class GarbCli(U.CliTestCase):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
+        super().setUp()
         self.ma = self.write("one.ma", "1 0 0\nv 0 0 0 1\n")
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def write(self, name, text):
-        path = os.path.join(self.dir, name)
-        with open(path, "w") as f:
-            f.write(text)
-        return path
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def assert_refused(self, r, code, message, outputs):
-        self.assertEqual(r.returncode, code, r.stderr)
-        self.assertIn(message, r.stderr)
-        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
-        for o in outputs:
-            self.assertFalse(os.path.exists(o), o)
-        self.assertFalse([f for f in os.listdir(self.dir) if "partial" in f])
 
     def test_one_sphere_gives_the_papers_face_count_and_stats(self):
         r = run(self.ma, "-o", self.path("m.off"), "--m1", self.path("m1.obj"),
@@ -50,14 +31,12 @@ class GarbCli(unittest.TestCase):
         self.assertEqual(stats["m1"]["faces"], 1344)
         self.assertEqual(stats["m1"]["genus"], 0)
         self.assertFalse(stats["hit_max_depth"])
-        info = subprocess.run([MODELS, "info", self.path("m1.obj"), "--json"],
-                              capture_output=True, text=True)
+        info = U.run(MODELS, "info", self.path("m1.obj"), "--json")
         self.assertEqual(json.loads(info.stdout)["faces"], 1344)
 
     def test_same_output_at_one_and_two_threads(self):
         ma = self.write("ring.ma", "".join("%r %r 0 0.3\n" % (
-            __import__("math").cos(k * 0.10471975511965977),
-            __import__("math").sin(k * 0.10471975511965977)) for k in range(60)))
+            math.cos(k * 0.10471975511965977), math.sin(k * 0.10471975511965977)) for k in range(60)))
         for t in ("1", "2"):
             r = run(ma, "-o", self.path("t%s.off" % t), "--threads", t)
             self.assertEqual(r.returncode, 0, r.stderr)

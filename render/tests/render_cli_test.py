@@ -9,9 +9,7 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
-import tempfile
 import unittest
 
 import numpy as np
@@ -20,13 +18,16 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 
-RENDER = os.path.abspath(sys.argv.pop(1)) if len(sys.argv) > 1 else "render"
-MODELS = os.path.abspath(sys.argv.pop(1)) if len(sys.argv) > 1 else "models"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "core", "tests", "support"))
+import cli_test_util as U  # noqa: E402
+
+RENDER, MODELS = U.programs_from_argv("render", "models")
 W, H = 160, 120
 
 
 def run(*args, env=None):
-    return subprocess.run([RENDER, *args], capture_output=True, text=True, env=env)
+    return U.run(RENDER, *args, env=env)
 
 
 def read_png(path):
@@ -60,28 +61,17 @@ def camera_block(scene_text):
     return m.group(0) if m else None
 
 
-class RenderCli(unittest.TestCase):
+class RenderCli(U.CliTestCase):
+    """The inputs are made once per class; every test writes into a folder of its own."""
+
     @classmethod
     def setUpClass(cls):
-        cls.tmp = tempfile.TemporaryDirectory()
-        cls.dir = cls.tmp.name
-        cls.sphere = os.path.join(cls.dir, "sphere.off")
-        r = subprocess.run([MODELS, "generate", "sphere", "--frequency", "6", "-o", cls.sphere],
-                           capture_output=True, text=True)
-        assert r.returncode == 0, r.stderr
-        cls.atoms = os.path.join(cls.dir, "two.ma")
+        super().setUpClass()
+        inputs = U.temporary_folder(cls.addClassCleanup)
+        cls.sphere = U.generate(MODELS, os.path.join(inputs, "sphere.off"), "sphere", "--frequency", "6")
+        cls.atoms = os.path.join(inputs, "two.ma")
         with open(cls.atoms, "w") as f:
             f.write("2 1 0\nv -1 0 0 0.3\nv 1 0 0 0.6\ne 0 1\n")
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.tmp.cleanup()
-
-    def setUp(self):
-        self.out = tempfile.mkdtemp(dir=self.dir)
-
-    def path(self, name):
-        return os.path.join(self.out, name)
 
     def render_ok(self, *args):
         r = run(*args)
@@ -161,7 +151,7 @@ class RenderCli(unittest.TestCase):
         self.assertIsNotNone(cams[0])
         self.assertEqual(cams[0], cams[1])
         self.assertNotEqual(cams[0], cams[2])  # framed on the atoms alone: another camera
-        self.assertFalse(any(n.endswith(".png") for n in os.listdir(self.out)))
+        self.assertFalse(any(n.endswith(".png") for n in os.listdir(self.dir)))
 
     def test_view_with_another_aspect_is_refused(self):
         view = self.path("v.json")
@@ -173,36 +163,32 @@ class RenderCli(unittest.TestCase):
         self.assertIn("v.json: framed for 160x120", r.stderr)
         self.render_ok(self.sphere, "--pov", self.path("c.pov"), "--view", view, "--width", "320")
 
-    def assert_fails_cleanly(self, r, code, message, png):
-        self.assertEqual(r.returncode, code, r.stderr)
-        self.assertIn(message, r.stderr)
-        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
-        self.assertFalse(os.path.exists(png))
-        self.assertEqual([n for n in os.listdir(self.out) if n.endswith(".png")], [])
+    def is_leftover(self, name):
+        return name.endswith(".png")  # a refused run writes no image, not even a partial one
 
     def test_unknown_extension(self):
         bad = self.path("atoms.txt")
         shutil.copy(self.atoms, bad)
         png = self.path("x.png")
-        self.assert_fails_cleanly(run(bad, "-o", png), 2, "atoms.txt: unknown extension", png)
+        self.assert_refused(run(bad, "-o", png), 2, "atoms.txt: unknown extension", [png])
 
     def test_missing_file(self):
         png = self.path("x.png")
-        self.assert_fails_cleanly(run(self.path("none.off"), "-o", png), 3,
-                                  "none.off: cannot open for reading", png)
+        self.assert_refused(run(self.path("none.off"), "-o", png), 3,
+                            "none.off: cannot open for reading", [png])
 
     def test_malformed_atoms(self):
         bad = self.path("bad.ma")
         with open(bad, "w") as f:
             f.write("1 0 0\nv 0 0 0 -1\n")
         png = self.path("x.png")
-        self.assert_fails_cleanly(run(bad, "-o", png), 2, "bad.ma:2: radius must be > 0", png)
+        self.assert_refused(run(bad, "-o", png), 2, "bad.ma:2: radius must be > 0", [png])
 
     def test_no_povray_on_path(self):
         png = self.path("x.png")
-        env = dict(os.environ, PATH=self.out)
-        self.assert_fails_cleanly(run(self.sphere, "-o", png, "--width", "16", "--height", "12", env=env),
-                                  3, "'povray' not found on PATH", png)
+        env = dict(os.environ, PATH=self.dir)
+        self.assert_refused(run(self.sphere, "-o", png, "--width", "16", "--height", "12", env=env),
+                            3, "'povray' not found on PATH", [png])
 
     def fake_povray(self, body):
         exe = self.path("fake-povray")
@@ -218,15 +204,15 @@ class RenderCli(unittest.TestCase):
             'echo "File \'scene.pov\' line 3: Parse Error: Expected something, boom" >&2\n'
             'exit 1\n')
         png = self.path("x.png")
-        self.assert_fails_cleanly(run(self.sphere, "-o", png, "--povray", exe), 3,
-                                  "failed (exit status 1): File 'scene.pov' line 3: Parse Error: "
-                                  "Expected something, boom", png)
+        self.assert_refused(run(self.sphere, "-o", png, "--povray", exe), 3,
+                            "failed (exit status 1): File 'scene.pov' line 3: Parse Error: "
+                            "Expected something, boom", [png])
 
     def test_povray_writing_no_image_is_an_error(self):
         exe = self.fake_povray("exit 0\n")
         png = self.path("x.png")
-        self.assert_fails_cleanly(run(self.sphere, "-o", png, "--povray", exe), 3,
-                                  "wrote no valid image", png)
+        self.assert_refused(run(self.sphere, "-o", png, "--povray", exe), 3,
+                            "wrote no valid image", [png])
 
     def test_invalid_options(self):
         png = self.path("x.png")
@@ -236,11 +222,11 @@ class RenderCli(unittest.TestCase):
                 (["--normals", "cotan"], "--normals"),
                 (["--colour", "red"], "--colour"),
         ):
-            self.assert_fails_cleanly(run(self.sphere, "-o", png, *args), 2, message, png)
-        self.assert_fails_cleanly(run(self.sphere, "-o", self.path("x.jpg")), 2, "must be a .png", png)
-        self.assert_fails_cleanly(run(self.sphere), 2, "nothing to write", png)
-        self.assert_fails_cleanly(run(self.sphere, "--pov", self.sphere), 2,
-                                  "would overwrite the input", png)
+            self.assert_refused(run(self.sphere, "-o", png, *args), 2, message, [png])
+        self.assert_refused(run(self.sphere, "-o", self.path("x.jpg")), 2, "must be a .png", [png])
+        self.assert_refused(run(self.sphere), 2, "nothing to write", [png])
+        self.assert_refused(run(self.sphere, "--pov", self.sphere), 2,
+                            "would overwrite the input", [png])
 
 
 if __name__ == "__main__":

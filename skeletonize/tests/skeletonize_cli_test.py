@@ -2,42 +2,26 @@
 """The skeletonize program at its edges: output, stats, exit codes, messages, no partial output."""
 import json
 import os
-import subprocess
 import sys
-import tempfile
 import unittest
 
-SKELETONIZE = sys.argv.pop(1)
-MODELS = sys.argv.pop(1)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "core", "tests", "support"))
+import cli_test_util as U  # noqa: E402
+
+SKELETONIZE, MODELS = U.programs_from_argv("skeletonize", "models")
 
 
 def run(*args):
-    return subprocess.run([SKELETONIZE, *args], capture_output=True, text=True)
+    return U.run(SKELETONIZE, *args)
 
 
 TETRA = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"
 
 
-class SkeletonizeCli(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w") as f:
-            f.write(text)
-        return self.path(name)
-
+class SkeletonizeCli(U.CliTestCase):
     def generate(self, name, *args):
-        mesh = self.path(name)
-        subprocess.run([MODELS, "generate", *args, "-o", mesh], check=True)
-        return mesh
+        return U.generate(MODELS, self.path(name), *args)
 
     def load(self, name):
         with open(self.path(name), "rb") as f:
@@ -55,9 +39,8 @@ class SkeletonizeCli(unittest.TestCase):
         return header, lines[1:]
 
     def assert_refused(self, r, code, message, inputs=()):
-        self.assertEqual(r.returncode, code, r.stderr)
-        self.assertIn(message, r.stderr)
-        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        """Refused cleanly, and the folder holds the `inputs` alone."""
+        super().assert_refused(r, code, message)
         self.assertEqual(sorted(os.listdir(self.dir)), sorted(os.path.basename(i) for i in inputs))
 
     def test_torus_gives_sixty_atoms_and_stats(self):
