@@ -25,8 +25,32 @@ std::string format_number(double x) {
 std::string atom_problem(const MedialAtom& a) {
   if (!a.centre.allFinite()) return "centre must be finite";
   if (!std::isfinite(a.radius)) return "radius must be finite, got " + format_number(a.radius);
-  if (!(a.radius > 0)) return "radius must be > 0, got " + format_number(a.radius);
+  if (!(a.radius >= 0)) return "radius must be >= 0, got " + format_number(a.radius);
   return {};
+}
+
+/// Problem with one edge ("joins atom 3 to itself"), or empty; indices already in range.
+std::string edge_problem(const std::array<int, 2>& e) {
+  if (e[0] == e[1]) return "joins atom " + std::to_string(e[0]) + " to itself";
+  return {};
+}
+
+/// Problem with one face ("repeats atom 3"), or empty; indices already in range.
+std::string face_problem(const std::array<int, 3>& f) {
+  for (int j = 0; j < 3; ++j)
+    if (f[j] == f[(j + 1) % 3]) return "repeats atom " + std::to_string(f[j]);
+  return {};
+}
+
+/// An optionally signed run of decimal digits, of any length: the trailing flag fields
+/// (MATFP's `v x y z r TYPE FLAG`, feature flags on `e` and `f` lines).
+bool is_integer(const std::string& token) {
+  const bool has_sign = !token.empty() && (token[0] == '+' || token[0] == '-');
+  std::size_t k = has_sign ? 1 : 0;
+  if (k == token.size()) return false;
+  for (; k < token.size(); ++k)
+    if (token[k] < '0' || token[k] > '9') return false;
+  return true;
 }
 
 /// One significant line of a text file: its 1-based number and its whitespace-split tokens.
@@ -88,10 +112,16 @@ class Parser {
     return static_cast<int>(i);
   }
 
+  /// A `.ma` record: its n required fields (tag included), then any number of integer flags,
+  /// which are checked and dropped.
   void expect_fields(const Line& line, std::size_t n, const char* form) const {
-    if (line.tokens.size() != n)
+    if (line.tokens.size() < n)
       fail(line, "expected '" + std::string(form) + "', got " + std::to_string(line.tokens.size()) +
                      " fields");
+    for (std::size_t k = n; k < line.tokens.size(); ++k)
+      if (!is_integer(line.tokens[k]))
+        fail(line, "field " + std::to_string(k + 1) + " after '" + form +
+                       "' is not an integer flag: '" + line.tokens[k] + "'");
   }
 
   MedialAtom atom(const Line& line, std::size_t first) const {
@@ -148,13 +178,19 @@ class Parser {
         expect_fields(line, 3, "e i j");
         if (static_cast<long>(s.edges.size()) == ne)
           fail(line, "more 'e' lines than the header's ne = " + std::to_string(ne));
-        s.edges.push_back({index(line, 1, nv, "edge"), index(line, 2, nv, "edge")});
+        const std::array<int, 2> e{index(line, 1, nv, "edge"), index(line, 2, nv, "edge")};
+        const std::string problem = edge_problem(e);
+        if (!problem.empty()) fail(line, "edge " + problem);
+        s.edges.push_back(e);
       } else if (tag == "f") {
         expect_fields(line, 4, "f i j k");
         if (static_cast<long>(s.faces.size()) == nf)
           fail(line, "more 'f' lines than the header's nf = " + std::to_string(nf));
-        s.faces.push_back(
-            {index(line, 1, nv, "face"), index(line, 2, nv, "face"), index(line, 3, nv, "face")});
+        const std::array<int, 3> f{index(line, 1, nv, "face"), index(line, 2, nv, "face"),
+                                   index(line, 3, nv, "face")};
+        const std::string problem = face_problem(f);
+        if (!problem.empty()) fail(line, "face " + problem);
+        s.faces.push_back(f);
       } else {
         fail(line, "unknown record '" + tag + "' (expected v, e or f)");
       }
@@ -197,8 +233,16 @@ void validate(const MedialSurface& s) {
         throw InvalidInput(std::string(what) + " " + std::to_string(which) + ": index " +
                            std::to_string(idx[j]) + " out of range [0, " + std::to_string(n) + ")");
   };
-  for (std::size_t e = 0; e < s.edges.size(); ++e) check(s.edges[e].data(), 2, "edge", e);
-  for (std::size_t f = 0; f < s.faces.size(); ++f) check(s.faces[f].data(), 3, "face", f);
+  for (std::size_t e = 0; e < s.edges.size(); ++e) {
+    check(s.edges[e].data(), 2, "edge", e);
+    const std::string problem = edge_problem(s.edges[e]);
+    if (!problem.empty()) throw InvalidInput("edge " + std::to_string(e) + ": " + problem);
+  }
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    check(s.faces[f].data(), 3, "face", f);
+    const std::string problem = face_problem(s.faces[f]);
+    if (!problem.empty()) throw InvalidInput("face " + std::to_string(f) + ": " + problem);
+  }
 }
 
 MedialSurface parse_medial_surface(std::istream& in, const std::string& name) {

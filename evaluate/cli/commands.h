@@ -72,7 +72,9 @@ int run_distance(const DistanceArgs& args);
 /// `evaluate atoms MESH ATOMS.ma`: two-sided distances between MESH and G.
 struct AtomsArgs {
   std::string mesh, atoms;
-  std::string cones = "rt";  ///< rt | all | edges | none, as garb --cones
+  std::string primitives = "auto";  ///< auto | ma | rt, as garb --primitives
+  std::string cones = "rt";         ///< rt | all | edges | none, as garb --cones
+  bool cone_options_given = false;  ///< --cones, --cone-filter or --cone-collar given: rt
   double cone_filter = garbing::ConeOptions{}.min_circle_ratio;
   double cone_collar = garbing::ConeOptions{}.max_collar;
   std::size_t samples = 0;  ///< per side; 0 = max(1e5, 10 V_mesh)

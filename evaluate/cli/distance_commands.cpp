@@ -152,14 +152,23 @@ int run_distance(const DistanceArgs& args) {
 
 CLI::App* add_atoms(CLI::App& app, AtomsArgs& args) {
   auto* sub = app.add_subcommand(
-      "atoms", "two-sided distances between MESH and G, the union of the atoms' spheres and cones");
+      "atoms",
+      "two-sided distances between MESH and G: the union of the atoms' spheres and cones, or a "
+      "medial mesh's envelope");
   sub->add_option("mesh", args.mesh, "mesh to judge")->required();
   sub->add_option("atoms", args.atoms, "medial atoms (.ma, or x y z r lines)")->required();
+  sub->add_option("--primitives", args.primitives, "G's primitives: auto, ma or rt (as garb)")
+      ->check(CLI::IsMember({"auto", "ma", "rt"}));
+  const auto given = [&args](const std::string&) { args.cone_options_given = true; };
   sub->add_option("--cones", args.cones, "cone pairs of G: rt, all, edges or none (as garb)")
-      ->check(CLI::IsMember({"rt", "all", "edges", "none"}));
+      ->check(CLI::IsMember({"rt", "all", "edges", "none"}))
+      ->each(given);
   sub->add_option("--cone-filter", args.cone_filter, "as garb --cone-filter")
-      ->check(CLI::Range(0.0, 1.0));
-  sub->add_option("--cone-collar", args.cone_collar, "as garb --cone-collar")->check(NonNegative);
+      ->check(CLI::Range(0.0, 1.0))
+      ->each(given);
+  sub->add_option("--cone-collar", args.cone_collar, "as garb --cone-collar")
+      ->check(NonNegative)
+      ->each(given);
   sub->add_option("--samples", args.samples, "samples per side (0 = max(1e5, 10 V_mesh))");
   sub->add_option("--seed", args.seed, "random seed of the sampling");
   sub->add_option("--diagonal", args.diagonal,
@@ -175,6 +184,12 @@ int run_atoms(const AtomsArgs& args) {
   const PolygonSoup mesh = read_polygon_soup(args.mesh);
   const MedialSurface atoms = read_medial_surface(args.atoms);
   AtomsDistanceOptions opt;
+  opt.primitives = garbing::parse_primitive_set(args.primitives);
+  if (args.cone_options_given && opt.primitives == garbing::PrimitiveSet::envelope)
+    throw InvalidInput(
+        "--cones, --cone-filter and --cone-collar choose the cones of --primitives "
+        "rt, not ma");
+  if (args.cone_options_given) opt.primitives = garbing::PrimitiveSet::atoms;
   opt.cones.source = garbing::parse_cone_source(args.cones);
   opt.cones.min_circle_ratio = args.cone_filter;
   opt.cones.max_collar = args.cone_collar;
@@ -187,7 +202,9 @@ int run_atoms(const AtomsArgs& args) {
 
   Json j = {{"mesh", args.mesh},
             {"atoms", args.atoms},
+            {"primitives", r.envelope ? "ma" : "rt"},
             {"cones", r.cones},
+            {"slabs", r.slabs},
             {"cone_source", args.cones},
             {"cone_filter", args.cone_filter},
             {"cone_collar", args.cone_collar},
@@ -203,9 +220,9 @@ int run_atoms(const AtomsArgs& args) {
        << "\nG -> mesh: " << lengths_text({{"max", d.b_to_a.max}, {"RMS", d.b_to_a.rms}}, diag)
        << '\n'
        << lengths_text({{"Hausdorff", d.hausdorff}, {"RMS", d.rms}}, diag)
-       << "\n(G: " << atoms.atoms.size() << " spheres, " << r.cones << " cones; " << r.mesh_samples
-       << " mesh samples, " << r.g_samples << " samples of G; " << std::setprecision(3) << seconds
-       << " s)\n";
+       << "\n(G: " << atoms.atoms.size() << " spheres, " << r.cones << " cones, " << r.slabs
+       << " slabs; " << r.mesh_samples << " mesh samples, " << r.g_samples << " samples of G; "
+       << std::setprecision(3) << seconds << " s)\n";
   emit_report(args.report, j, text.str());
   return 0;
 }

@@ -12,10 +12,12 @@ namespace mg::evaluate {
 AtomsDistance atoms_distance(const PolygonSoup& mesh, const MedialSurface& atoms,
                              const AtomsDistanceOptions& opt, const std::string& name) {
   validate(atoms);
-  const garbing::TargetShape shape = garbing::make_target_shape(atoms, opt.cones);
+  const garbing::TargetShape shape = garbing::make_target_shape(atoms, opt.primitives, opt.cones);
   const TriangleIndex index(mesh, name);
   AtomsDistance r;
   r.cones = shape.cone_count();
+  r.slabs = shape.slab_count();
+  r.envelope = garbing::resolve(opt.primitives, atoms) == garbing::PrimitiveSet::envelope;
   r.diagonal = bbox_diagonal(mesh.points);
   if (!(r.diagonal > 0)) throw InvalidInput(name + ": bounding-box diagonal is 0");
   std::size_t referenced = 0;

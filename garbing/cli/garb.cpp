@@ -1,6 +1,7 @@
 // garb: medial surface garbing. Atoms in, closed triangle mesh out.
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
-//        [--no-criterion N ...] [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C]
+//        [--no-criterion N ...] [--primitives auto|ma|rt]
+//        [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C]
 //        [--spheres-only] [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N]
 //        [--max-gap F] [--stats FILE.json] [--threads N]
 #include "garbing/garb.h"
@@ -30,7 +31,7 @@ Json mesh_json(const mg::Mesh& mesh, const mg::MeshTopology& topo) {
 }
 
 /// The octree: its frame and depths, the splits, and the leaves per level (active ones, and
-/// those active through a cone's crease fill only).
+/// those active through a cone or slab only: a crease fill, a waist, a slab's prism).
 Json octree_json(const gb::Octree& tree, const std::vector<int>& criteria_off) {
   std::map<int, long> per_level, active_per_level;
   long active = 0, crease_only = 0;
@@ -57,24 +58,38 @@ Json octree_json(const gb::Octree& tree, const std::vector<int>& criteria_off) {
   j["leaves_per_level"] = levels;
   j["leaves"] = tree.leaves.size();
   j["active_leaves"] = active;
-  j["crease_leaves"] = crease_only;  // active through a cone's crease fill only
+  j["crease_leaves"] = crease_only;  // active through a cone or slab only
   return j;
 }
 
 /// M2: the mesh, then G's cones and the refinement options, then what migration, gap
 /// splitting and fold repair did.
-Json m2_json(const gb::Garbing& r, const gb::GarbOptions& opt, const std::string& cone_source) {
+Json m2_json(const mg::MedialSurface& atoms, const gb::Garbing& r, const gb::GarbOptions& opt,
+             const std::string& cone_source) {
+  const bool envelope = gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::envelope;
   const mg::MeshTopology topo = mg::mesh_topology(mg::soup_from_mesh(r.m2.mesh));
   const gb::RefineStats& s = r.m2.stats;
   Json j = mesh_json(r.m2.mesh, topo);
   j.update(Json{{"closed", topo.closed}, {"oriented", topo.oriented}});
   // G's cones and the refinement options.
-  j.update(Json{{"cones", r.g.cone_count()},
-                {"cone_source", cone_source},
-                {"cone_filter", opt.cones.min_circle_ratio},
-                {"cone_collar", opt.cones.max_collar},
-                {"dual", opt.refine.dual},
-                {"subdivisions", opt.refine.subdivisions}});
+  j.update(Json{{"primitives", envelope ? "ma" : "rt"},
+                {"cones", r.g.cone_count()},
+                {"slabs", r.g.slab_count()}});
+  if (envelope) {
+    const gb::EnvelopeCounts& e = r.g.envelope_counts();
+    j["envelope"] = {{"edges", e.edges},
+                     {"repeated_edges", e.repeated_edges},
+                     {"edges_in_a_ball", e.edges_in_a_ball},
+                     {"faces", e.faces},
+                     {"repeated_faces", e.repeated_faces},
+                     {"collinear_faces", e.collinear_faces},
+                     {"slabs_without_tangent_triangles", e.slabs_without_tangent_triangles}};
+  } else {
+    j.update(Json{{"cone_source", cone_source},
+                  {"cone_filter", opt.cones.min_circle_ratio},
+                  {"cone_collar", opt.cones.max_collar}});
+  }
+  j.update(Json{{"dual", opt.refine.dual}, {"subdivisions", opt.refine.subdivisions}});
   // Migration: the vertices moved onto G, and those that fell back to the closest point.
   j.update(Json{{"vertices_migrated", s.vertices_migrated},
                 {"fallback_zero_direction", s.fallback_zero_direction},
@@ -104,7 +119,7 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
   Json m1 = mesh_json(r.m1.mesh, mg::mesh_topology(mg::soup_from_mesh(r.m1.mesh)));
   m1["hanging_corners"] = r.m1.hanging_corners;
   m1["split_vertices"] = r.m1.split_vertices;
-  const Json m2 = m2_json(r, opt, cone_source);
+  const Json m2 = m2_json(atoms, r, opt, cone_source);
   std::vector<int> owners;
   for (const auto& f : r.m1.faces) owners.push_back(f.owner);
   std::sort(owners.begin(), owners.end());
@@ -148,8 +163,13 @@ int garb_main(int argc, char** argv) {
       ->check(CLI::Range(1, 20));
   app.add_option("--no-criterion", off, "switch a subdivision criterion off (1-4, repeatable)")
       ->check(CLI::Range(1, 4));
-  std::string cones = "rt";
+  std::string primitives = "auto", cones = "rt";
   bool spheres_only = false, no_dual = false;
+  app.add_option("--primitives", primitives,
+                 "G's primitives: ma (the envelope: balls, a cone per edge, a slab per face), rt "
+                 "(balls and the cones of --cones), auto (ma when the file has edges or faces and "
+                 "no cone option is given)")
+      ->check(CLI::IsMember({"auto", "ma", "rt"}));
   app.add_option("--cones", cones, "cone pairs: rt (regular triangulation), all, edges (.ma), none")
       ->check(CLI::IsMember({"rt", "all", "edges", "none"}));
   app.add_option("--cone-filter", opt.cones.min_circle_ratio,
@@ -182,12 +202,27 @@ int garb_main(int argc, char** argv) {
   if (!stats_path.empty()) mg::check_output_path(stats_path, inputs);
   for (int k : off) opt.octree.criteria[k - 1] = false;
   opt.cones.source = spheres_only ? gb::ConeSource::none : gb::parse_cone_source(cones);
+  opt.primitives = gb::parse_primitive_set(primitives);
+  const bool cone_options = app.count("--cones") + app.count("--cone-filter") +
+                                app.count("--cone-collar") + app.count("--spheres-only") >
+                            0;
+  if (cone_options && opt.primitives == gb::PrimitiveSet::envelope)
+    throw mg::InvalidInput(
+        "--cones, --cone-filter, --cone-collar and --spheres-only choose the "
+        "cones of --primitives rt, not ma");
+  if (cone_options) opt.primitives = gb::PrimitiveSet::atoms;
   opt.refine.dual = !no_dual;
   const auto limit = mg::limit_threads(threads);
 
   mg::Stopwatch clock;
   const mg::MedialSurface atoms = mg::read_medial_surface(input);
   const double seconds_read = clock.seconds();
+  if (gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::atoms)
+    for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
+      if (!(atoms.atoms[i].radius > 0))
+        throw mg::InvalidInput(input + ": atom " + std::to_string(i) +
+                               " has radius 0: the balls alone (--primitives rt) need radii > 0; "
+                               "only a medial mesh's envelope (edges or faces) takes them");
   const gb::Garbing result = gb::garb(atoms, opt);
   mg::Stopwatch write_clock;
   if (!m1_path.empty()) mg::write_mesh(result.m1.mesh, m1_path);

@@ -7,8 +7,9 @@ namespace mg::garbing {
 Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
   GarbSeconds seconds;
   Stopwatch clock;
-  // G: the union of the atoms' balls and of the chosen cones, in the frame of the octree.
-  TargetShape g = make_target_shape(atoms, opt.cones, bounding_cube_frame(atoms));
+  // G: the union of the atoms' balls and of the chosen cones (or of the medial mesh's cones
+  // and slabs), in the frame of the octree.
+  TargetShape g = make_target_shape(atoms, opt.primitives, opt.cones, bounding_cube_frame(atoms));
   seconds.target_shape = clock.restart();
   // Step 1: the adaptive octree wrapping G.
   Octree tree = build_octree(g, opt.octree);

@@ -13,20 +13,25 @@
 namespace mg::garbing::refine {
 namespace {
 
-/// Visits P(c) of a leaf: Spheres(c), the cones of those balls (a cone of two of them
-/// twice), and Cones(c) (the cones meeting the cube through their crease only): every
-/// primitive whose solid meets the cube (leaves inside one ball, which own no M1 face, list
-/// no crease cones).
+/// Visits P(c) of a leaf: Spheres(c), the cones and slabs of those balls (one of two or three
+/// of them more than once), Cones(c) and Slabs(c) (those meeting the cube where none of their
+/// balls does): every primitive whose solid meets the cube (leaves inside one ball, which own
+/// no M1 face, list no cones or slabs of their own).
 template <class Visit>
 void for_each_leaf_primitive(const Context& ctx, int leaf, Visit&& visit) {
   const OctreeCell& cell = ctx.tree.cells[leaf];
+  const bool slabs = ctx.g.slab_count() > 0;
   for (int a : cell.spheres) {
     visit(a);
     const auto [first, last] = ctx.g.cones_of_atom(a);
     for (const PrimitiveId* c = first; c != last; ++c) visit(*c);
+    if (!slabs) continue;
+    const auto [first_slab, last_slab] = ctx.g.slabs_of_atom(a);
+    for (const PrimitiveId* c = first_slab; c != last_slab; ++c) visit(*c);
   }
   const int n = static_cast<int>(ctx.g.sphere_count());
   for (int k : cell.cones) visit(n + k);
+  for (int k : cell.slabs) visit(ctx.g.slab_id(k));
 }
 
 /// P(c) of a leaf, appended sorted, without repeats.
@@ -65,7 +70,7 @@ bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Local
   bool inside = false;
   auto enter = [&](PrimitiveId g) {
     if (inside) return;  // settled: the caller's run query (and `first` may be <= 0)
-    if (!ctx.g.is_sphere(g)) {
+    if (ctx.g.is_cone(g)) {
       // A cone entered by `first` (or holding v) meets the segment [v, v + first dir] inside
       // its bounding ball: a cheap rejection of most (dir is unit; slack for rounding).
       const Cone& k = ctx.g.cone(g);

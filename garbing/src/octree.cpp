@@ -87,12 +87,36 @@ class OctreeBuilder {
   /// Primitive ids of the criteria, as G's: sphere i is i, cone k is n + k (n atoms).
   int sphere_count() const { return static_cast<int>(g_.sphere_count()); }
 
-  /// Whether two primitives meet (closed solids). A cone meets its own balls and any cone
-  /// sharing one; otherwise exact up to 1e-9 of the hull's slope bound, counted as meeting.
+  /// The atoms of a hull (cone or slab), -1 padded.
+  std::array<int, 3> corners(int p) const {
+    if (g_.is_slab(p)) return g_.slab(p).atoms;
+    const Cone& k = g_.cone(p);
+    return {k.a, k.b, -1};
+  }
+
+  static bool share_atom(const std::array<int, 3>& x, const std::array<int, 3>& y) {
+    for (int a : x)
+      for (int b : y)
+        if (a >= 0 && a == b) return true;
+    return false;
+  }
+
+  /// Whether two primitives meet (closed solids). A hull (cone or slab) meets its own balls
+  /// and any hull sharing one; otherwise exact up to 1e-9 of the searches' slope bounds,
+  /// counted as meeting.
   bool primitives_meet(int p, int q) const {
     const int n = sphere_count();
     if (p > q) std::swap(p, q);
     if (q < n) return balls_intersect(p, q);
+    if (g_.is_slab(q)) {  // ids: spheres, cones, slabs
+      const Slab& sq = g_.slab(q);
+      if (p < n) {
+        if (p == sq.atoms[0] || p == sq.atoms[1] || p == sq.atoms[2]) return true;
+        return slab_meets_ball(sq, g_.sphere(p));
+      }
+      if (share_atom(corners(p), sq.atoms)) return true;
+      return g_.is_slab(p) ? slabs_meet(g_.slab(p), sq) : slab_meets_cone(sq, g_.cone(p));
+    }
     const Cone& kq = g_.cone(q);
     if (p < n) {
       if (p == kq.a || p == kq.b) return true;
@@ -106,9 +130,10 @@ class OctreeBuilder {
   /// Primitives(c): Spheres(c) then n + Cones(c), sorted; Spheres(c) itself when there are
   /// no cones, else built in `scratch`.
   const std::vector<int>& primitives(const OctreeCell& cell, std::vector<int>& scratch) const {
-    if (cell.cones.empty()) return cell.spheres;
+    if (cell.cones.empty() && cell.slabs.empty()) return cell.spheres;
     scratch.assign(cell.spheres.begin(), cell.spheres.end());
     for (int k : cell.cones) scratch.push_back(sphere_count() + k);
+    for (int k : cell.slabs) scratch.push_back(g_.slab_id(k));
     return scratch;
   }
 
@@ -151,6 +176,24 @@ class OctreeBuilder {
     for (int l : b.cones)  // cones of b against the spheres of a
       for (int s : a.spheres)
         if (primitives_meet(s, n + l)) return true;
+    if (a.slabs.empty() && b.slabs.empty()) return false;
+    if (share_one(a.slabs, b.slabs)) return true;
+    for (int k : a.slabs) {  // slabs of a against everything of b
+      const int p = g_.slab_id(k);
+      for (int t : b.spheres)
+        if (primitives_meet(p, t)) return true;
+      for (int l : b.cones)
+        if (primitives_meet(p, n + l)) return true;
+      for (int l : b.slabs)
+        if (primitives_meet(p, g_.slab_id(l))) return true;
+    }
+    for (int l : b.slabs) {  // slabs of b against the spheres and cones of a
+      const int q = g_.slab_id(l);
+      for (int s : a.spheres)
+        if (primitives_meet(s, q)) return true;
+      for (int k : a.cones)
+        if (primitives_meet(n + k, q)) return true;
+    }
     return false;
   }
 
@@ -325,14 +368,14 @@ class OctreeBuilder {
     // candidates are the parent's and those of the parent's balls (a cone meets a sub-cube
     // only if it meets the cube). A cube inside one ball holds no boundary and is never tested
     // by criteria 1 and 3: its children need none (they are active through that ball).
-    if (parent.inside_one_ball || g_.cone_count() == 0) return;
+    if (parent.inside_one_ball || (g_.cone_count() == 0 && g_.slab_count() == 0)) return;
     // Per thread: each atom's child mask in this parent, and a stamp per cone against repeats.
     thread_local std::vector<std::uint8_t> mask_of_atom;
     thread_local std::vector<std::uint64_t> stamp;
     thread_local std::uint64_t generation = 0;
     if (mask_of_atom.size() != g_.sphere_count()) mask_of_atom.assign(g_.sphere_count(), 0);
-    if (stamp.size() != g_.cone_count()) {
-      stamp.assign(g_.cone_count(), 0);
+    if (stamp.size() != g_.cone_count() + g_.slab_count()) {
+      stamp.assign(g_.cone_count() + g_.slab_count(), 0);
       generation = 0;
     }
     ++generation;
@@ -362,8 +405,39 @@ class OctreeBuilder {
         const auto [first, last] = g_.cones_of_atom(parent.spheres[x]);
         for (const PrimitiveId* id = first; id != last; ++id) consider(*id - n);
       }
+    // Slabs(child) likewise: the slabs meeting the cube where none of their balls does.
+    const int first_slab = g_.slab_id(0);
+    const Vec3 parent_hi = parent_lo + Vec3::Constant(2 * side);
+    auto consider_slab = [&](int k) {
+      const std::size_t key = g_.cone_count() + static_cast<std::size_t>(k);
+      if (stamp[key] == generation) return;
+      stamp[key] = generation;
+      const Slab& slab = g_.slab(first_slab + k);
+      const unsigned via_ball =
+          mask_of_atom[slab.atoms[0]] | mask_of_atom[slab.atoms[1]] | mask_of_atom[slab.atoms[2]];
+      if ((via_ball | skip) == 0xFF ||
+          !bounding_box(slab).intersects(Eigen::AlignedBox3d(parent_lo, parent_hi)))
+        return;
+      for (int j = 0; j < 8; ++j) {
+        if ((skip >> j & 1) || (via_ball >> j & 1)) continue;
+        const Vec3 child_lo(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]);
+        if (slab_meets_box(slab, child_lo, Vec3(child_lo + Vec3::Constant(side))))
+          out[j].slabs.push_back(k);
+      }
+    };
+    if (g_.slab_count() > 0) {
+      for (int k : parent.slabs) consider_slab(k);
+      for (std::size_t x = 0; x < parent.spheres.size(); ++x)
+        if (masks[x] != 0xFF) {
+          const auto [first, last] = g_.slabs_of_atom(parent.spheres[x]);
+          for (const PrimitiveId* id = first; id != last; ++id) consider_slab(*id - first_slab);
+        }
+    }
     for (int i : parent.spheres) mask_of_atom[i] = 0;
-    for (auto& child : out) std::sort(child.cones.begin(), child.cones.end());
+    for (auto& child : out) {
+      std::sort(child.cones.begin(), child.cones.end());
+      std::sort(child.slabs.begin(), child.slabs.end());
+    }
   }
 
   void finish() {

@@ -76,6 +76,13 @@ Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) 
   c.bound_radius2 = half * half + rim * rim;
   c.dr = c.r2 - c.r1;
   c.lipschitz = c.length + std::abs(c.dr);
+  c.disjoint = !(c.length < c.r1 + c.r2);
+  if (c.disjoint) {
+    c.fill_lo[0] = c.t_lo;
+    c.fill_hi[0] = c.t_hi;
+    c.fill_hi[1] = rim;
+    return c;
+  }
   c.crease = crease(c.length, c.r1, c.r2);
   const double x0 = c.crease.along, rho0 = c.crease.radius;
   c.fill_lo[0] = std::min({x0, c.t_lo, c.t_hi});
@@ -284,6 +291,11 @@ bool hull_meets_box(const Cone& k, const Vec3& lo, const Vec3& hi) {
 
 bool near_crease_fill(const Cone& k, const Vec3& lo, double side) {
   const double half_diagonal = side * (std::sqrt(3.0) / 2);
+  if (k.disjoint) {  // the whole waist: the frustum's bounding ball grown by the half diagonal
+    const double reach = std::sqrt(k.bound_radius2) + half_diagonal;
+    return (lo + Vec3::Constant(side / 2) - k.bound_centre).squaredNorm() <=
+           reach * reach * (1 + 1e-12);
+  }
   const Vec3 q = lo + Vec3::Constant(side / 2) - k.c1;
   const double x = q.dot(k.u);
   if (x < k.fill_lo[0] - half_diagonal || x > k.fill_hi[0] + half_diagonal) return false;

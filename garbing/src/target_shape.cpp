@@ -45,9 +45,32 @@ detail::Box box_of(const Eigen::AlignedBox3d& b) { return {b.min(), b.max()}; }
 
 }  // namespace
 
+namespace {
+
+/// CSR lists atom -> the ids of the primitives having it as a corner.
+template <class Corners>
+void index_by_atom(std::size_t atom_count, std::size_t count, int first_id, const Corners& corners,
+                   std::vector<int>& start, std::vector<int>& ids) {
+  start.assign(atom_count + 1, 0);
+  for (std::size_t k = 0; k < count; ++k)
+    for (int a : corners(k)) ++start[a + 1];
+  for (std::size_t i = 0; i < atom_count; ++i) start[i + 1] += start[i];
+  ids.resize(start.back());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (std::size_t k = 0; k < count; ++k)
+    for (int a : corners(k)) ids[fill[a]++] = first_id + static_cast<int>(k);
+}
+
+}  // namespace
+
 TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
                          const Frame& frame)
-    : frame_(frame), atoms_{atoms.atoms, {}, {}}, bvh_(std::make_unique<Bvh>()) {
+    : TargetShape(atoms, pairs, {}, frame) {}
+
+TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
+                         const std::vector<std::array<int, 3>>& triples, const Frame& frame,
+                         const EnvelopeCounts& counts)
+    : frame_(frame), atoms_{atoms.atoms, {}, {}}, counts_(counts), bvh_(std::make_unique<Bvh>()) {
   // The world frame copies the centres as they are (a transform by the identity could still
   // change the sign of a zero).
   if (!frame_.is_world())
@@ -55,24 +78,28 @@ TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::arra
   cones_.reserve(pairs.size());
   for (const auto& p : pairs)
     cones_.push_back(make_cone(atoms_.atoms[p[0]], atoms_.atoms[p[1]], p[0], p[1]));
-  cones_by_atom_start_.assign(atoms_.atoms.size() + 1, 0);
-  for (const auto& c : cones_) {
-    ++cones_by_atom_start_[c.a + 1];
-    ++cones_by_atom_start_[c.b + 1];
+  const std::size_t n = atoms_.atoms.size();
+  index_by_atom(
+      n, cones_.size(), static_cast<int>(n),
+      [&](std::size_t k) {
+        return std::array<int, 2>{cones_[k].a, cones_[k].b};
+      },
+      cones_by_atom_start_, cones_by_atom_);
+  first_slab_ = static_cast<int>(n + cones_.size());
+  slabs_.reserve(triples.size());
+  for (const auto& t : triples) {
+    slabs_.push_back(
+        make_slab(atoms_.atoms[t[0]], atoms_.atoms[t[1]], atoms_.atoms[t[2]], t[0], t[1], t[2]));
+    counts_.slabs_without_tangent_triangles += !slabs_.back().has_tangent_triangles;
   }
-  for (std::size_t i = 0; i < atoms_.atoms.size(); ++i)
-    cones_by_atom_start_[i + 1] += cones_by_atom_start_[i];
-  cones_by_atom_.resize(2 * cones_.size());
-  std::vector<int> fill(cones_by_atom_start_.begin(), cones_by_atom_start_.end() - 1);
-  for (std::size_t k = 0; k < cones_.size(); ++k) {
-    const int id = static_cast<int>(atoms_.atoms.size() + k);
-    cones_by_atom_[fill[cones_[k].a]++] = id;
-    cones_by_atom_[fill[cones_[k].b]++] = id;
-  }
+  index_by_atom(
+      n, slabs_.size(), first_slab_, [&](std::size_t k) { return slabs_[k].atoms; },
+      slabs_by_atom_start_, slabs_by_atom_);
   std::vector<detail::Box> boxes;
-  boxes.reserve(atoms_.atoms.size() + cones_.size());
+  boxes.reserve(primitive_count());
   for (const auto& s : atoms_.atoms) boxes.push_back(box_of(bounding_box(s)));
   for (const auto& c : cones_) boxes.push_back(box_of(bounding_box(c)));
+  for (const auto& s : slabs_) boxes.push_back(box_of(bounding_box(s)));
   std::vector<int> ids(boxes.size());
   std::iota(ids.begin(), ids.end(), 0);
   bvh_->build(std::move(boxes), std::move(ids));
@@ -88,17 +115,20 @@ TargetShape make_target_shape(const MedialSurface& atoms, const ConeOptions& con
 }
 
 Vec3 TargetShape::migration_vector(PrimitiveId i, const Vec3& v) const {
+  if (is_slab(i)) return garbing::migration_vector(slab(i), v);
   return is_sphere(i) ? garbing::migration_vector(atoms_.atoms[i], v)
                       : garbing::migration_vector(cone(i), v);
 }
 
 bool TargetShape::primitive_contains(PrimitiveId i, const Vec3& p, double eps) const {
+  if (is_slab(i)) return contains_deeper_than(slab(i), p, eps);
   return is_sphere(i) ? contains_deeper_than(atoms_.atoms[i], p, eps)
                       : contains_deeper_than(cone(i), p, eps);
 }
 
 bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& dir, double& t0,
                                double& t1) const {
+  if (is_slab(i)) return line_interval(slab(i), origin, dir, t0, t1);
   return is_sphere(i) ? line_interval(atoms_.atoms[i], origin, dir, t0, t1)
                       : line_interval(cone(i), origin, dir, t0, t1);
 }
@@ -111,8 +141,10 @@ bool TargetShape::contains(const Vec3& p) const {
                 if (is_sphere(i)) {
                   const double r = atoms_.atoms[i].radius;
                   inside = (p - atoms_.atoms[i].centre).squaredNorm() <= r * r;
-                } else {
+                } else if (is_cone(i)) {
                   inside = closest_solid_point(cone(i), p) == p;
+                } else {
+                  inside = slab_distance(slab(i), p) <= 0;
                 }
               });
   return inside;
@@ -127,8 +159,10 @@ bool TargetShape::within(const Vec3& p, double tol) const {
                 if (is_sphere(i)) {
                   const double r = atoms_.atoms[i].radius + tol;
                   found = (p - atoms_.atoms[i].centre).squaredNorm() <= r * r;
-                } else {
+                } else if (is_cone(i)) {
                   found = hull_distance(cone(i), p) <= tol;
+                } else {
+                  found = slab_distance(slab(i), p) <= tol;
                 }
               });
   return found;
@@ -254,8 +288,10 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
         if (is_sphere(i)) {
           const Vec3 d = p - atoms_.atoms[i].centre;
           q = atoms_.atoms[i].centre + atoms_.atoms[i].radius * d / d.norm();
-        } else {
+        } else if (is_cone(i)) {
           q = closest_solid_point(cone(i), p);
+        } else {
+          q = closest_solid_point(slab(i), p);
         }
         const double e2 = (q - p).squaredNorm();
         if (e2 < best) {
@@ -286,8 +322,10 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
                   q = atoms_.atoms[i].centre +
                       atoms_.atoms[i].radius *
                           (d.squaredNorm() > 0 ? Vec3(d.normalized()) : Vec3(Vec3::UnitX()));
-                } else {
+                } else if (is_cone(i)) {
                   q = closest_lateral_point(cone(i), p);
+                } else {
+                  q = closest_boundary_point(slab(i), p);
                 }
                 around.push_back({(q - p).norm(), i, q});
               });
@@ -353,7 +391,7 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
 
 namespace {
 
-/// Draw j (0, 1, 2) of sample k: a counter-based stream, so sample k depends only on (seed, k).
+/// Draw j (0..3) of sample k: a counter-based stream, so sample k depends only on (seed, k).
 double uniform(std::uint64_t seed, std::uint64_t k, int j) {
   return unit_interval(
       splitmix64(seed * 0x632be59bd9b4e019ULL + 4 * k + static_cast<std::uint64_t>(j)));
@@ -362,14 +400,17 @@ double uniform(std::uint64_t seed, std::uint64_t k, int j) {
 }  // namespace
 
 std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t seed) const {
-  const std::size_t n = atoms_.atoms.size() + cones_.size();
+  const std::size_t n = primitive_count();
   std::vector<double> cumulative(n);
   double total = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (is_sphere(static_cast<int>(i))) {
+    const int id = static_cast<int>(i);
+    if (is_sphere(id)) {
       total += 4 * M_PI * atoms_.atoms[i].radius * atoms_.atoms[i].radius;
+    } else if (is_cone(id)) {
+      total += lateral_area(cone(id));
     } else {
-      total += lateral_area(cone(static_cast<int>(i)));
+      total += tangent_area(slab(id));
     }
     cumulative[i] = total;
   }
@@ -381,7 +422,9 @@ std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t 
         std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(), n - 1));
     const double u = uniform(seed, k, 1), v = uniform(seed, k, 2);
     Vec3 q;
-    if (is_sphere(i)) {
+    if (is_slab(i)) {
+      q = tangent_point(slab(i), u, v, uniform(seed, k, 3));
+    } else if (is_sphere(i)) {
       const double z = 2 * u - 1, phi = 2 * M_PI * v, s = std::sqrt(std::max(0.0, 1 - z * z));
       q = atoms_.atoms[i].centre +
           atoms_.atoms[i].radius * Vec3(s * std::cos(phi), s * std::sin(phi), z);
@@ -417,6 +460,14 @@ void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi,
               [&](int i) {
                 if (is_sphere(i)) {
                   if (meets_box(atoms_.atoms[i], lo, hi)) out.push_back(i);
+                  return;
+                }
+                if (is_slab(i)) {
+                  const Slab& s = slab(i);
+                  if (meets_box(atoms_.atoms[s.atoms[0]], lo, hi) ||
+                      meets_box(atoms_.atoms[s.atoms[1]], lo, hi) ||
+                      meets_box(atoms_.atoms[s.atoms[2]], lo, hi) || slab_meets_box(s, lo, hi))
+                    out.push_back(i);
                   return;
                 }
                 const Cone& k = cone(i);

@@ -42,6 +42,37 @@ class GarbCli(U.CliTestCase):
             self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(open(self.path("t1.off"), "rb").read(), open(self.path("t2.off"), "rb").read())
 
+    def test_medial_mesh_garbs_its_envelope(self):
+        # Two disjoint balls joined by an edge: one capsule; their balls alone: two spheres.
+        ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
+        r = run(ma, "-o", self.path("m.off"), "--stats", self.path("s.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        stats = json.load(open(self.path("s.json")))
+        self.assertEqual(stats["m2"]["primitives"], "ma")
+        self.assertEqual(stats["m2"]["cones"], 1)
+        self.assertEqual(stats["m2"]["envelope"]["edges"], 1)
+        self.assertEqual((stats["m2"]["components"], stats["m2"]["genus"]), (1, 0))
+        r = run(ma, "-o", self.path("b.off"), "--primitives", "rt", "--stats", self.path("b.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        stats = json.load(open(self.path("b.json")))
+        self.assertEqual((stats["m2"]["primitives"], stats["m2"]["cones"]), ("rt", 0))
+        self.assertEqual(stats["m2"]["components"], 2)
+
+    def test_cone_options_choose_rt(self):
+        ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
+        r = run(ma, "-o", self.path("m.off"), "--primitives", "ma", "--cones", "edges")
+        self.assert_refused(r, 2, "choose the cones of --primitives rt, not ma", [self.path("m.off")])
+        r = run(ma, "-o", self.path("m.off"), "--spheres-only", "--stats", self.path("s.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(json.load(open(self.path("s.json")))["m2"]["primitives"], "rt")
+
+    def test_zero_radius_needs_a_medial_mesh(self):
+        r = run(self.write("p.ma", "0 0 0 1\n3 0 0 0\n"), "-o", self.path("m.off"))
+        self.assert_refused(r, 2, "atom 1 has radius 0", [self.path("m.off")])
+        ma = self.write("cone.ma", "2 1 0\nv 0 0 0 1\nv 3 0 0 0\ne 0 1\n")
+        r = run(ma, "-o", self.path("m.off"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+
     def test_missing_input(self):
         r = run(self.path("none.ma"), "-o", self.path("m.off"))
         self.assert_refused(r, 3, "none.ma: cannot open for reading", [self.path("m.off")])
@@ -54,7 +85,7 @@ class GarbCli(U.CliTestCase):
         r = run(self.write("n.ma", "1 0 0\nv 0 0 0 nan\n"), "-o", self.path("m.off"))
         self.assert_refused(r, 2, "n.ma:2: radius must be finite, got nan", [self.path("m.off")])
         r = run(self.write("z.ma", "0 0 0 1\n0 0 1 -0.3\n"), "-o", self.path("m.off"))
-        self.assert_refused(r, 2, "z.ma:2: radius must be > 0, got -0.3", [self.path("m.off")])
+        self.assert_refused(r, 2, "z.ma:2: radius must be >= 0, got -0.3", [self.path("m.off")])
 
     def test_min_depth_above_max_depth(self):
         r = run(self.ma, "-o", self.path("m.off"), "--min-depth", "9", "--max-depth", "8",

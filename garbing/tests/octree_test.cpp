@@ -335,7 +335,13 @@ TEST(Octree, RefusesBadInput) {
   EXPECT_THROW(mg_test::octree_of(
                    atoms({{Eigen::Vector3d::Zero(), std::numeric_limits<double>::quiet_NaN()}})),
                mg::InvalidInput);
-  EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 0.0}})), mg::InvalidInput);
+  // A ball of radius 0 is a valid atom, but the balls alone (rt) have nothing to garb there.
+  try {
+    mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), 1.0}, {Eigen::Vector3d(3, 0, 0), 0.0}}));
+    ADD_FAILURE() << "a zero radius accepted by G of the atoms alone";
+  } catch (const mg::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("atom 1 has radius 0"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(mg_test::octree_of(atoms({{Eigen::Vector3d::Zero(), -1.0}})), mg::InvalidInput);
   mg::garbing::OctreeOptions opt;
   opt.min_depth = 9;

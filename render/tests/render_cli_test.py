@@ -182,7 +182,7 @@ class RenderCli(U.CliTestCase):
         with open(bad, "w") as f:
             f.write("1 0 0\nv 0 0 0 -1\n")
         png = self.path("x.png")
-        self.assert_refused(run(bad, "-o", png), 2, "bad.ma:2: radius must be > 0", [png])
+        self.assert_refused(run(bad, "-o", png), 2, "bad.ma:2: radius must be >= 0", [png])
 
     def test_no_povray_on_path(self):
         png = self.path("x.png")

@@ -1,7 +1,8 @@
 #pragma once
 /// \file atoms_distance.h
 /// Distances between a mesh and the target shape G of its atoms (`evaluate atoms`): the union
-/// of the atoms' spheres and cones, whose boundary the garbing aims at. This judges a mesher
+/// of the atoms' spheres and cones (or a medial mesh's envelope: balls, cones and slabs), whose
+/// boundary the garbing aims at. This judges a mesher
 /// apart from the atoms' own error (the distance from G to the original object).
 
 #include "core/medial_surface.h"
@@ -11,6 +12,8 @@
 namespace mg::evaluate {
 
 struct AtomsDistanceOptions {
+  /// G's primitives (as `garb --primitives`): a medial mesh's envelope, or balls and cones.
+  garbing::PrimitiveSet primitives = garbing::PrimitiveSet::automatic;
   garbing::ConeOptions cones;  ///< which cones join the spheres in G (as `garb --cones`)
   std::size_t samples = 0;     ///< per side; 0 = max(1e5, 10 V_mesh)
   std::uint64_t seed = 1;
@@ -23,6 +26,8 @@ struct AtomsDistance {
   std::size_t g_samples = 0;   ///< all samples of G
   std::size_t g_unbiased = 0;  ///< of which area-uniform (the rest: G's points nearest the mesh)
   std::size_t cones = 0;
+  std::size_t slabs = 0;
+  bool envelope = false;  ///< G was the medial mesh's envelope
 };
 
 /// Metro sampling of the mesh against exact point-to-G distances (TargetShape::distance:

@@ -13,14 +13,16 @@ namespace mg::garbing {
 
 /// Options of every stage.
 struct GarbOptions {
-  ConeOptions cones;     ///< which cones G has (its balls are the atoms)
+  ConeOptions cones;     ///< which cones G has with PrimitiveSet::atoms (its balls are the atoms)
   OctreeOptions octree;  ///< step 1
   RefineOptions refine;  ///< step 3
+  /// Which primitives G has: a medial mesh's envelope, or the atoms' balls and cones.
+  PrimitiveSet primitives = PrimitiveSet::automatic;
 };
 
 /// Wall-clock seconds of each stage.
 struct GarbSeconds {
-  double target_shape = 0;  ///< choosing the cone pairs and building G's hierarchy
+  double target_shape = 0;  ///< choosing the cones (and slabs), building G's hierarchy
   double octree = 0, m1 = 0, m2 = 0;
   double total() const { return target_shape + octree + m1 + m2; }
 };
@@ -34,7 +36,8 @@ struct Garbing {
   GarbSeconds seconds;
 };
 
-/// Garbs the atoms: G = make_target_shape(atoms, opt.cones, bounding_cube_frame(atoms)), then
+/// Garbs the atoms: G = make_target_shape(atoms, opt.primitives, opt.cones,
+/// bounding_cube_frame(atoms)), then
 /// T = build_octree(G), M1 = extract_coarse_mesh(T), M2 = refine_mesh(M1, T, G). The result
 /// is the same at any thread count.
 /// @pre atoms valid; options as each stage documents   @throws InvalidInput

@@ -42,8 +42,11 @@ struct OctreeCell {
   /// the criteria. Empty in a cell inside one ball and its descendants (they hold no boundary,
   /// and the criteria skip them).
   std::vector<int> cones;
+  /// Slabs(c): likewise the slabs of G (index k: primitive id g.slab_id(k)) whose solid meets
+  /// the closed cube where none of their three balls does, sorted.
+  std::vector<int> slabs;
   bool is_leaf() const { return first_child < 0; }
-  bool is_active() const { return !spheres.empty() || !cones.empty(); }
+  bool is_active() const { return !spheres.empty() || !cones.empty() || !slabs.empty(); }
 };
 
 /// The octree, in G's frame. Child k of a cell has offset (k & 1, k >> 1 & 1, k >> 2 & 1).
@@ -67,11 +70,12 @@ struct Octree {
   Eigen::Vector3d to_world(const Eigen::Vector3d& local) const { return frame.to_world(local); }
 };
 
-/// Step 1: builds T wrapping G. A cell is active when it meets a ball or the solid of a cone
-/// (the convex hull of its two balls); criteria 1 and 3 see the cones of Cones(c) as
-/// primitives too (a cone meets its own balls and the cones sharing one; other meetings are
-/// tested exactly). So M1 lies outside G within a leaf everywhere, also over the creases the
-/// cones fill, and no migration crosses a crease. G without cones: the union of the balls.
+/// Step 1: builds T wrapping G. A cell is active when it meets a ball, the solid of a cone
+/// (the convex hull of its two balls) or of a slab (of its three); criteria 1 and 3 see the
+/// cones of Cones(c) and the slabs of Slabs(c) as primitives too (two primitives sharing an
+/// atom meet; other meetings are tested exactly). So M1 lies outside G within a leaf everywhere,
+/// also over the creases the cones fill, and no migration crosses a crease. G without cones: the
+/// union of the balls.
 /// @param g  G, built in its atoms' bounding cube frame (make_target_shape(atoms, cones,
 ///           bounding_cube_frame(atoms)))
 /// @pre g.frame().cube_side > 0; 1 <= opt.max_depth <= 20; 0 <= opt.min_depth <= max_depth

@@ -26,8 +26,9 @@ struct Crease {
 /// @param length |c2 - c1|, model units   @pre |r1 - r2| < length < r1 + r2
 Crease crease(double length, double r1, double r2);
 
-/// The solid cone tangent to two intersecting balls (c1, r1), (c2, r2), L > |r1 - r2|: the
-/// truncated cone between the two tangent circles. Axial coordinate x from c1 along u.
+/// The solid cone tangent to two balls (c1, r1), (c2, r2) neither of which holds the other,
+/// L > |r1 - r2|, whether or not they intersect (a medial mesh's edge joins balls that may not):
+/// the truncated cone between the two tangent circles. Axial coordinate x from c1 along u.
 struct Cone {
   int a = -1, b = -1;               ///< atom indices
   Eigen::Vector3d c1, u;            ///< first centre, unit axis toward the second
@@ -40,9 +41,13 @@ struct Cone {
   /// its rims (squared radius); a cheap rejection for line tests.
   Eigen::Vector3d bound_centre = Eigen::Vector3d::Zero();
   double bound_radius2 = 0;
-  /// The crease of the two spheres. In the profile half-plane (axial x, distance from the
-  /// axis), the part of the solid outside both balls (the crease fill) lies inside the triangle
-  /// of the crease point and the two rims; fill_lo, fill_hi are that triangle's box (x, radius).
+  /// Whether the balls are disjoint (L >= r1 + r2): no crease, and the part of the solid outside
+  /// both balls is a whole waist.
+  bool disjoint = false;
+  /// The crease of the two spheres (when they intersect). In the profile half-plane (axial x,
+  /// distance from the axis), the part of the solid outside both balls (the crease fill) lies
+  /// inside the triangle of the crease point and the two rims; fill_lo, fill_hi are that
+  /// triangle's box (x, radius). For disjoint balls, the frustum's profile box.
   Crease crease;
   double fill_lo[2] = {0, 0}, fill_hi[2] = {0, 0};
   double dr = 0;         ///< r2 - r1
@@ -53,7 +58,7 @@ struct Cone {
   double radius(double t) const { return r1 + t * dr; }
 };
 
-/// Builds the cone of atoms a and b. @pre the balls intersect and neither contains the other
+/// Builds the cone of atoms a and b. @pre neither ball holds the other: |c2 - c1| > |r2 - r1|
 Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b);
 
 /// min over t in [0, 1] of |p - c(t)| - r(t): the distance from p to the cone's solid when p
@@ -107,7 +112,8 @@ bool hull_meets_box(const Cone& cone, const Eigen::Vector3d& lo, const Eigen::Ve
 /// False when the cube [lo, lo + side] is too far from the cone's crease fill to meet it
 /// (conservative: the fill, revolved about the axis, lies in the profile triangle of the
 /// crease point and the two rims; the cube's centre is compared with that triangle in its own
-/// meridian half-plane). Monotone: a cube is near whenever one of its sub-cubes is.
+/// meridian half-plane; for disjoint balls, with the frustum's bounding ball). Monotone: a cube
+/// is near whenever one of its sub-cubes is.
 bool near_crease_fill(const Cone& cone, const Eigen::Vector3d& lo, double side);
 
 /// Whether the closed cube [lo, lo + side], which meets neither of the cone's two balls, meets

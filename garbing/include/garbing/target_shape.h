@@ -1,8 +1,10 @@
 #pragma once
 /// \file target_shape.h
 /// The target shape G of the garbing (docs/algorithm.md, "Step 3"): the boundary of the union
-/// of the primitives (primitives.h): every atom's ball, plus for chosen intersecting pairs of
-/// atoms the cone tangent to both (cone and balls together form the pair's convex hull).
+/// of the primitives (primitives.h, slab.h): every atom's ball, plus for chosen pairs of atoms
+/// the cone tangent to both (cone and balls together form the pair's convex hull), plus for a
+/// medial mesh's faces the slab of their three atoms (the envelope, docs/algorithm.md "Medial
+/// meshes").
 /// G is built once, from the atoms and the cone options, and passed as a value to every stage
 /// that reads it: the octree, M2's migration and repair, `evaluate atoms`. Queries are exact for
 /// balls and cones; a bounding-volume hierarchy over the primitives' boxes is the broad phase.
@@ -10,6 +12,7 @@
 #include "core/medial_surface.h"
 #include "garbing/frame.h"
 #include "garbing/primitives.h"
+#include "garbing/slab.h"
 
 #include <array>
 #include <cstdint>
@@ -52,11 +55,52 @@ ConeSource parse_cone_source(const std::string& name);
 /// The pairs (i < j) that get a cone: from `opt.source`, kept when the two balls intersect,
 /// neither contains the other, and the circle-ratio and collar filters pass. Sorted. Chosen
 /// on the atoms as given (world coordinates).
-/// @pre atoms valid; 0 <= min_circle_ratio <= 1; max_collar >= 0   @throws InvalidInput
+/// @pre atoms valid, radii > 0; 0 <= min_circle_ratio <= 1; max_collar >= 0
+/// @throws InvalidInput
 std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const ConeOptions& opt);
 
-/// A primitive of G: id < sphere_count() is the ball of atom id, otherwise the cone
-/// id - sphere_count().
+/// Which primitives G has.
+enum class PrimitiveSet {
+  automatic,  ///< envelope when the atoms have edges or faces, else atoms
+  /// "ma": the envelope of a medial mesh: every atom's ball, one cone per edge (the faces'
+  /// edges included, whether or not the balls intersect) and one slab per face.
+  envelope,
+  /// "rt": the atoms' balls and the cones ConeOptions chooses (the paper's path; edges and
+  /// faces ignored).
+  atoms
+};
+
+/// Parses "auto", "ma" or "rt". @throws InvalidInput
+PrimitiveSet parse_primitive_set(const std::string& name);
+
+/// automatic resolved for these atoms: envelope when they have edges or faces, else atoms.
+PrimitiveSet resolve(PrimitiveSet set, const MedialSurface& atoms);
+
+/// How a medial mesh's edges and faces became primitives (envelope_primitives()).
+struct EnvelopeCounts {
+  long edges = 0;            ///< distinct edges, the faces' edges included
+  long repeated_edges = 0;   ///< edge lines or face sides repeating one (either way round)
+  long edges_in_a_ball = 0;  ///< one ball holds the other: the edge's hull is that ball, no cone
+  long faces = 0;            ///< distinct faces (as sets of three atoms)
+  long repeated_faces = 0;   ///< face lines repeating one
+  long collinear_faces = 0;  ///< centres collinear: the edge hulls cover the face, no slab
+  long slabs_without_tangent_triangles = 0;  ///< radii too steep for a plane touching all three
+};
+
+/// The envelope's hulls: cones (i < j, sorted) and slabs (i < j < k, sorted) of a medial mesh.
+struct EnvelopePrimitives {
+  std::vector<std::array<int, 2>> cones;
+  std::vector<std::array<int, 3>> slabs;
+  EnvelopeCounts counts;
+};
+
+/// The cones and slabs of the envelope of `atoms` (chosen on the atoms as given): every distinct
+/// edge, and every side of every face, whose balls neither holds the other, is a cone; every
+/// distinct face with non-collinear centres is a slab. @pre atoms valid
+EnvelopePrimitives envelope_primitives(const MedialSurface& atoms);
+
+/// A primitive of G: id < sphere_count() is the ball of atom id; the next cone_count() ids are
+/// the cones (cone id - sphere_count()), then the slabs.
 using PrimitiveId = int;
 
 /// G with its spatial queries, in the coordinates of its frame (every point given to or
@@ -68,6 +112,12 @@ class TargetShape {
   /// @pre atoms valid; every pair indexes two intersecting atoms, neither holding the other
   TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
               const Frame& frame = {});
+  /// G of the atoms' balls, the cones of `pairs` and the slabs of `triples`; `counts` are kept
+  /// for reports. @pre as above, and no pair of a triple holds one ball in the other... the
+  /// triples' centres not collinear (envelope_primitives() chooses them so)
+  TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
+              const std::vector<std::array<int, 3>>& triples, const Frame& frame,
+              const EnvelopeCounts& counts = {});
   ~TargetShape();
   TargetShape(TargetShape&&) noexcept;
   TargetShape& operator=(TargetShape&&) noexcept;
@@ -77,15 +127,31 @@ class TargetShape {
   const MedialSurface& atoms() const { return atoms_; }
   std::size_t sphere_count() const { return atoms_.atoms.size(); }
   std::size_t cone_count() const { return cones_.size(); }
-  std::size_t primitive_count() const { return atoms_.atoms.size() + cones_.size(); }
+  std::size_t slab_count() const { return slabs_.size(); }
+  std::size_t primitive_count() const {
+    return atoms_.atoms.size() + cones_.size() + slabs_.size();
+  }
   const MedialAtom& sphere(PrimitiveId i) const { return atoms_.atoms[i]; }
   const Cone& cone(PrimitiveId i) const { return cones_[i - atoms_.atoms.size()]; }
+  const Slab& slab(PrimitiveId i) const { return slabs_[i - first_slab_]; }
   bool is_sphere(PrimitiveId i) const { return i < static_cast<int>(atoms_.atoms.size()); }
+  bool is_cone(PrimitiveId i) const { return !is_sphere(i) && i < first_slab_; }
+  bool is_slab(PrimitiveId i) const { return i >= first_slab_; }
+  /// The id of slab k (0-based among the slabs).
+  PrimitiveId slab_id(int k) const { return first_slab_ + k; }
+  /// How the medial mesh's edges and faces became primitives (zeros for PrimitiveSet::atoms).
+  const EnvelopeCounts& envelope_counts() const { return counts_; }
 
   /// The cones with atom `a` as an end, as primitive ids [first, second), increasing.
   std::pair<const PrimitiveId*, const PrimitiveId*> cones_of_atom(int a) const {
     return {cones_by_atom_.data() + cones_by_atom_start_[a],
             cones_by_atom_.data() + cones_by_atom_start_[a + 1]};
+  }
+
+  /// The slabs with atom `a` as a corner, as primitive ids [first, second), increasing.
+  std::pair<const PrimitiveId*, const PrimitiveId*> slabs_of_atom(int a) const {
+    return {slabs_by_atom_.data() + slabs_by_atom_start_[a],
+            slabs_by_atom_.data() + slabs_by_atom_start_[a + 1]};
   }
 
   /// m_g of primitive i at v.
@@ -154,6 +220,10 @@ class TargetShape {
   MedialSurface atoms_;                                   // the balls, in frame_ (no connectivity)
   std::vector<Cone> cones_;                               // in frame_
   std::vector<int> cones_by_atom_start_, cones_by_atom_;  // CSR: atom -> its cones' ids
+  std::vector<Slab> slabs_;                               // in frame_
+  int first_slab_ = 0;                                    // sphere_count + cone_count
+  std::vector<int> slabs_by_atom_start_, slabs_by_atom_;  // CSR: atom -> its slabs' ids
+  EnvelopeCounts counts_;
   std::unique_ptr<Bvh> bvh_;
 };
 
@@ -163,5 +233,10 @@ class TargetShape {
 /// @pre atoms valid; cone options as cone_pairs   @throws InvalidInput
 TargetShape make_target_shape(const MedialSurface& atoms, const ConeOptions& cones = {},
                               const Frame& frame = {});
+
+/// G of the primitive set: for the envelope, envelope_primitives(atoms) (`cones` unused); for
+/// atoms, as above. @throws InvalidInput
+TargetShape make_target_shape(const MedialSurface& atoms, PrimitiveSet primitives,
+                              const ConeOptions& cones, const Frame& frame = {});
 
 }  // namespace mg::garbing
