@@ -92,14 +92,19 @@ Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) 
   return c;
 }
 
-double hull_distance(const Cone& k, const Vec3& p) {
+double hull_parameter(const Cone& k, const Vec3& p) {
   const Vec3 q = p - k.c1;
   const double x = q.dot(k.u), y = q.cross(k.u).norm();  // a cross product: accurate near the axis
   const double dr = k.r2 - k.r1;
   // cos(phi) = 0 only when rounding makes one ball hold the other: the hull is the larger.
-  double t = k.cos_phi > 0 ? (x - k.sin_phi * y / k.cos_phi) / k.length : (dr > 0 ? 1.0 : 0.0);
-  t = std::clamp(t, 0.0, 1.0);
-  return (p - (k.c1 + (t * k.length) * k.u)).norm() - (k.r1 + t * dr);
+  const double t =
+      k.cos_phi > 0 ? (x - k.sin_phi * y / k.cos_phi) / k.length : (dr > 0 ? 1.0 : 0.0);
+  return std::clamp(t, 0.0, 1.0);
+}
+
+double hull_distance(const Cone& k, const Vec3& p) {
+  const double t = hull_parameter(k, p);
+  return (p - (k.c1 + (t * k.length) * k.u)).norm() - (k.r1 + t * (k.r2 - k.r1));
 }
 
 Vec3 migration_vector(const MedialAtom& ball, const Vec3& v) {

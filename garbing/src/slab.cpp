@@ -42,15 +42,6 @@ double edge_distance(const Slab& k, int e, const Vec3& p) {
   return hull_distance(k.edge[e], p);
 }
 
-/// The t in [0, 1] of the edge cone's ball nearest p, where hull_distance attains its minimum.
-double edge_parameter(const Cone& k, const Vec3& p) {
-  const Vec3 q = p - k.c1;
-  const double x = q.dot(k.u), y = q.cross(k.u).norm();
-  const double t =
-      k.cos_phi > 0 ? (x - k.sin_phi * y / k.cos_phi) / k.length : (k.dr > 0 ? 1.0 : 0.0);
-  return std::clamp(t, 0.0, 1.0);
-}
-
 /// The value at n of the support-plane distance h(n) - n . p, h(n) = max_i c_i . n + r_i.
 double support_gap(const Slab& k, const Vec3& n, const Vec3& p) {
   double h = -kInf;
@@ -171,7 +162,7 @@ Vec3 closest_solid_point(const Slab& k, const Vec3& p) {
     r = k.r[k.edge_ball[best]];
   } else {
     const Cone& cone = k.edge[best];
-    const double along = edge_parameter(cone, p);
+    const double along = hull_parameter(cone, p);
     c = cone.centre(along);
     r = cone.radius(along);
   }
@@ -204,19 +195,17 @@ Vec3 closest_boundary_point(const Slab& k, const Vec3& p) {
   for (int e = 0; e < 3; ++e) {
     if (k.edge_is_ball[e]) continue;
     // The cone's outward normals are sin(phi) u + cos(phi) e, e normal to the axis; the best for
-    // p is p's own radial direction. On the axis every e gives the same value, and the in-plane
-    // one pointing away from the third centre is the one where the third ball is lowest.
+    // p is p's own radial direction. On (or within rounding of) the axis every e gives the same
+    // value, and the in-plane e pointing away from the third centre is the one where the third
+    // ball is lowest: both are candidates.
     const Cone& cone = k.edge[e];
+    Vec3 outward = cone.u.cross(k.normal);
+    if (outward.dot(k.c[(e + 2) % 3] - cone.c1) > 0) outward = -outward;
+    consider(cone.sin_phi * cone.u + cone.cos_phi * outward);
     const Vec3 w = p - cone.c1;
-    Vec3 radial = w - w.dot(cone.u) * cone.u;
+    const Vec3 radial = w - w.dot(cone.u) * cone.u;
     const double len = radial.norm();
-    if (len > 0) {
-      radial /= len;
-    } else {
-      radial = cone.u.cross(k.normal);
-      if (radial.dot(k.c[(e + 2) % 3] - cone.c1) > 0) radial = -radial;
-    }
-    consider(cone.sin_phi * cone.u + cone.cos_phi * radial);
+    if (len > 0) consider(cone.sin_phi * cone.u + (cone.cos_phi / len) * radial);
   }
   if (k.has_tangent_triangles) {
     consider(k.tangent_normal[0]);

@@ -109,6 +109,12 @@ TEST(Slab, PlateByHand) {
   EXPECT_TRUE(
       (gb::closest_boundary_point(s, c + Vector3d(0, 0, 0.25)) - (c + Vector3d(0, 0, 1))).norm() <
       1e-12);
+  // On an edge's axis and at a centre, every way out is 1 long.
+  for (const Vector3d& p : {Vector3d(2, 0, 0), Vector3d(0, 0, 0), Vector3d(0, 4, 0)}) {
+    const Vector3d q = gb::closest_boundary_point(s, p);
+    EXPECT_NEAR((q - p).norm(), 1, 1e-12) << p.transpose();
+    EXPECT_NEAR(gb::slab_distance(s, q), 0, 1e-12) << p.transpose();
+  }
   // The tangent triangles are the medial triangle at z = +-1.
   for (int side = 0; side < 2; ++side)
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(std::abs(s.tangent[side][i].z()), 1, 1e-12);

@@ -67,6 +67,9 @@ Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b);
 /// ahead of c(t) by tan(phi) times p's distance from the axis.
 double hull_distance(const Cone& k, const Eigen::Vector3d& p);
 
+/// The t in [0, 1] where hull_distance's minimum is attained: the ball B(c(t), r(t)) nearest p.
+double hull_parameter(const Cone& k, const Eigen::Vector3d& p);
+
 /// The per-primitive migration vector of the paper: with p the foot on the primitive's axis of
 /// the surface normal through v and r the radius there, m_g(v) = r (v - p) / |v - p|^2. Zero
 /// when v is on the axis, and for a cone when the foot falls outside [0, L].

@@ -108,9 +108,10 @@ double tangent_area(const Slab& s);
 /// @pre s.has_tangent_triangles
 Eigen::Vector3d tangent_point(const Slab& s, double u, double v, double w);
 
-/// Whether the solid reaches the closed box [lo, hi]: min over the triangle of
-/// box_distance(c(l)) - r(l) <= 0, by a convex search that errs only toward "meets" (within 1e-9
-/// of the parameter range).
+/// Whether the solid reaches the closed box [lo, hi]: its balls, the box's centre against
+/// slab_distance (inscribed and circumscribed balls), its edge cones (hull_meets_box), then the
+/// prism between the tangent triangles by separating axes. Exact up to rounding and the cone
+/// searches' 1e-9, counted as meeting.
 bool slab_meets_box(const Slab& s, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
 
 /// Whether the solids meet (closed): a ball, a cone, another slab. The ball test is exact
