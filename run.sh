@@ -7,3 +7,4 @@ mg_install
 mg_build
 "$MG_PYTHON" experiments/models.py --build "$MG_BUILD_DIR" --write-results --quiet
 "$MG_PYTHON" experiments/reproduce.py --build "$MG_BUILD_DIR" "$@"
+"$MG_PYTHON" experiments/medial_meshes.py --build "$MG_BUILD_DIR" "$@"

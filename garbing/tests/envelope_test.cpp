@@ -61,6 +61,20 @@ void expect_garbed(const mg::MedialSurface& s, const gb::Garbing& r, int compone
   EXPECT_FALSE(r.tree.hit_max_depth) << what;
 }
 
+/// A centre atom of radius 0.5 and six around it on a circle of radius 3 at heights z(k), radii
+/// r(k); `faces` of the fan (k, k + 1 mod 6) around the centre.
+template <class Z, class R>
+mg::MedialSurface hexagon_fan(int faces, const Z& z, const R& r) {
+  mg::MedialSurface s;
+  s.atoms.push_back({Vector3d(0, 0, 0), 0.5});
+  for (int k = 0; k < 6; ++k) {
+    const double a = 2 * M_PI * k / 6;
+    s.atoms.push_back({Vector3d(3 * std::cos(a), 3 * std::sin(a), z(k)), r(k)});
+  }
+  for (int k = 0; k < faces; ++k) s.faces.push_back({0, 1 + k, 1 + (k + 1) % 6});
+  return s;
+}
+
 TEST(Envelope, PrimitivesOfAMedialMesh) {
   mg::MedialSurface s = mg_test::atoms({{Vector3d(0, 0, 0), 1},
                                         {Vector3d(4, 0, 0), 0.5},
@@ -138,14 +152,9 @@ TEST(Envelope, RingOfEdgesHasGenusOne) {
 }
 
 TEST(Envelope, TriangulatedDiscIsOneBall) {
-  // A hexagon fan: a centre atom and six around it, six faces, radii varying.
-  mg::MedialSurface s;
-  s.atoms.push_back({Vector3d(0, 0, 0), 0.5});
-  for (int k = 0; k < 6; ++k) {
-    const double a = 2 * M_PI * k / 6;
-    s.atoms.push_back({Vector3d(3 * std::cos(a), 3 * std::sin(a), 0.2 * k), 0.2 + 0.05 * k});
-  }
-  for (int k = 0; k < 6; ++k) s.faces.push_back({0, 1 + k, 1 + (k + 1) % 6});
+  // A closed hexagon fan, its rim rising and its radii growing.
+  mg::MedialSurface s = hexagon_fan(
+      6, [](int k) { return 0.2 * k; }, [](int k) { return 0.2 + 0.05 * k; });
   const auto r = garb_envelope(s, 6);
   EXPECT_EQ(r.g.slab_count(), 6u);
   EXPECT_EQ(r.g.cone_count(), 12u);
@@ -189,13 +198,9 @@ TEST(Envelope, PointedAtomsOfZeroRadius) {
 }
 
 TEST(Envelope, SameMeshAtOneAndTwoThreads) {
-  mg::MedialSurface s;
-  s.atoms.push_back({Vector3d(0, 0, 0), 0.5});
-  for (int k = 0; k < 6; ++k) {
-    const double a = 2 * M_PI * k / 6;
-    s.atoms.push_back({Vector3d(3 * std::cos(a), 3 * std::sin(a), 0.3 * (k % 2)), 0.3});
-  }
-  for (int k = 0; k < 5; ++k) s.faces.push_back({0, 1 + k, 2 + k});
+  // An open fan of five faces, its rim zigzagging, the gap closed by an edge.
+  mg::MedialSurface s = hexagon_fan(
+      5, [](int k) { return 0.3 * (k % 2); }, [](int) { return 0.3; });
   s.edges = {{6, 1}};
   std::vector<Vector3d> one, two;
   {

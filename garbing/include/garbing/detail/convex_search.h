@@ -12,21 +12,23 @@
 
 namespace mg::garbing::detail {
 
-/// Whether a convex function f on [0, 1], its slope bounded by `lipschitz`, reaches <= 0:
-/// golden section that stops as soon as a sample is <= 0 (yes) or the bound from the
-/// bracket, min sample - lipschitz * width, is > 0 (no); a width of 1e-9 counts as yes, so the
-/// answer errs only toward "reaches".
+/// A golden-section bracket [a, b] of a convex function's minimum, with its two inner samples
+/// and the least sample seen.
 template <class F>
-bool convex_reaches_zero(const F& f, double lipschitz) {
-  constexpr double g = 0.6180339887498949;
-  double a = 0, b = 1;
-  double x1 = b - g * (b - a), x2 = a + g * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  double best = std::min({f(0.0), f(1.0), f1, f2});
-  // The minimum lies in [0, 1]; the bound needs the bracket that holds it.
-  while (best > 0) {
-    if (best - lipschitz * (b - a) > 0) return false;
-    if (b - a <= 1e-9) return true;
+struct GoldenBracket {
+  static constexpr double g = 0.6180339887498949;
+  const F& f;
+  double a, b, x1, x2, f1, f2, best;
+
+  GoldenBracket(const F& fn, double lo, double hi)
+      : f(fn), a(lo), b(hi), x1(hi - g * (hi - lo)), x2(lo + g * (hi - lo)) {
+    f1 = f(x1);
+    f2 = f(x2);
+    best = std::min({f(lo), f(hi), f1, f2});
+  }
+
+  /// Narrows the bracket by the golden ratio, one new sample.
+  void step() {
     if (f1 <= f2) {
       b = x2;
       x2 = x1;
@@ -42,6 +44,21 @@ bool convex_reaches_zero(const F& f, double lipschitz) {
       f2 = f(x2);
       best = std::min(best, f2);
     }
+  }
+};
+
+/// Whether a convex function f on [0, 1], its slope bounded by `lipschitz`, reaches <= 0:
+/// golden section that stops as soon as a sample is <= 0 (yes) or the bound from the
+/// bracket, min sample - lipschitz * width, is > 0 (no); a width of 1e-9 counts as yes, so the
+/// answer errs only toward "reaches".
+template <class F>
+bool convex_reaches_zero(const F& f, double lipschitz) {
+  GoldenBracket<F> s(f, 0.0, 1.0);
+  // The minimum lies in [0, 1]; the bound needs the bracket that holds it.
+  while (s.best > 0) {
+    if (s.best - lipschitz * (s.b - s.a) > 0) return false;
+    if (s.b - s.a <= 1e-9) return true;
+    s.step();
   }
   return true;
 }
@@ -52,31 +69,14 @@ bool convex_reaches_zero(const F& f, double lipschitz) {
 template <class F>
 double convex_minimum_below(const F& f, double a, double b, double lipschitz,
                             double stop_at = -std::numeric_limits<double>::infinity()) {
-  constexpr double g = 0.6180339887498949;
   if (!(b > a)) return f(a);
   const double width = 1e-9 * (b - a);
-  double x1 = b - g * (b - a), x2 = a + g * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  double best = std::min({f(a), f(b), f1, f2});
-  while (b - a > width) {
-    if (best <= stop_at) return best;
-    if (f1 <= f2) {
-      b = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = b - g * (b - a);
-      f1 = f(x1);
-      best = std::min(best, f1);
-    } else {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + g * (b - a);
-      f2 = f(x2);
-      best = std::min(best, f2);
-    }
+  GoldenBracket<F> s(f, a, b);
+  while (s.b - s.a > width) {
+    if (s.best <= stop_at) return s.best;
+    s.step();
   }
-  return best - lipschitz * (b - a);
+  return s.best - lipschitz * (s.b - s.a);
 }
 
 /// Whether a convex function f(s, t) on the triangle s, t >= 0, s + t <= 1, its slope along
