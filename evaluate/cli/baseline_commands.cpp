@@ -124,8 +124,10 @@ int run_union(const UnionArgs& args) {
 // --- vdb -------------------------------------------------------------------------------------
 
 CLI::App* add_vdb(CLI::App& app, VdbArgs& args) {
-  auto* sub = add_baseline(app, "vdb", "OpenVDB level set of the spheres, meshed (volumeToMesh)",
-                           args.baseline);
+  auto* sub = add_baseline(
+      app, "vdb",
+      "OpenVDB level set of the spheres, or of a medial mesh's envelope, meshed (volumeToMesh)",
+      args.baseline);
   auto* voxel =
       sub->add_option("--voxel", args.voxel, "voxel size, model units (0 = diagonal / 400)");
   auto* vertices = sub->add_option("--match-vertices", args.match_vertices,
@@ -137,6 +139,10 @@ CLI::App* add_vdb(CLI::App& app, VdbArgs& args) {
   sub->add_option("--samples", args.samples,
                   "--match-hausdorff: samples per side (0 = default; raised to twice the larger "
                   "vertex count when below it)");
+  sub->add_option(
+      "--primitives", args.primitives,
+      "what is meshed: auto, ma (a medial mesh's envelope: G's signed distance "
+      "sampled) or rt (the spheres alone); auto is ma when the file has edges or faces");
   voxel->excludes(vertices)->excludes(hausdorff);
   vertices->excludes(hausdorff);
   add_report_options(*sub, args.baseline.report);
@@ -159,23 +165,25 @@ int run_vdb(const VdbArgs& args) {
     check_mesh_output_path(b.output, inputs);
   }
   check_report_path(b.report, inputs);
+  const garbing::PrimitiveSet primitives = garbing::parse_primitive_set(args.primitives);
   const MedialSurface atoms = read_medial_surface(b.input);
 
   // The voxel: given, or searched (the search's keys come first in the report).
   VdbOptions opt;
   opt.voxel = args.voxel;
+  opt.primitives = primitives;
   Json j = Json::object();
   Json probes = Json::array();
   bool clamped = false;
   if (args.match_vertices > 0 || !match_ref.empty()) {
     VdbMatch m;
     if (args.match_vertices > 0) {
-      m = vdb_match_vertices(atoms, args.match_vertices);
+      m = vdb_match_vertices(atoms, args.match_vertices, /*max_probes=*/5, primitives);
     } else {
       const PolygonSoup ref = read_polygon_soup(match_ref);
       MeshDistanceOptions dopt;
       dopt.samples = args.samples;
-      m = vdb_match_hausdorff(atoms, match_pct, ref, dopt, match_ref);
+      m = vdb_match_hausdorff(atoms, match_pct, ref, dopt, match_ref, /*max_probes=*/5, primitives);
     }
     for (const auto& p : m.probes)
       probes.push_back({{"voxel", p.voxel}, {"value", p.value}, {"vertices", p.vertices}});
@@ -193,14 +201,23 @@ int run_vdb(const VdbArgs& args) {
   j["voxel"] = mesh.voxel;
   j["dropped_spheres"] = mesh.dropped_spheres;
   j["quads"] = mesh.quads;
+  j["primitives"] = mesh.envelope ? "ma" : "rt";
+  j["cones"] = mesh.cones;
+  j["slabs"] = mesh.slabs;
+  if (mesh.envelope) j["leaves"] = mesh.leaves;
   if (!probes.empty()) {
     j["probes"] = probes;
     j["clamped"] = clamped;
   }
   std::ostringstream text;
-  text << "OpenVDB: " << mesh_size_text(mesh.mesh) << ", voxel " << std::setprecision(6)
-       << mesh.voxel << ", " << mesh.dropped_spheres << " spheres under 1.5 voxels dropped, "
-       << timing_text(t) << '\n';
+  if (mesh.envelope)
+    text << "OpenVDB, envelope of " << mesh.cones << " cones and " << mesh.slabs
+         << " slabs: " << mesh_size_text(mesh.mesh) << ", voxel " << std::setprecision(6)
+         << mesh.voxel << ", " << timing_text(t) << '\n';
+  else
+    text << "OpenVDB: " << mesh_size_text(mesh.mesh) << ", voxel " << std::setprecision(6)
+         << mesh.voxel << ", " << mesh.dropped_spheres << " spheres under 1.5 voxels dropped, "
+         << timing_text(t) << '\n';
   if (!probes.empty())
     text << "  voxel search: " << probes.size() << " probes, matched " << j["matched"].dump()
          << " for a target of " << j["target"].dump() << (clamped ? " (voxel clamped)" : "")

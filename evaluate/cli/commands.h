@@ -134,6 +134,7 @@ struct VdbArgs {
   std::size_t match_vertices = 0;            ///< search the voxel giving about N vertices
   std::vector<std::string> match_hausdorff;  ///< P REF: search the voxel giving P % Hausdorff
   std::size_t samples = 0;                   ///< --match-hausdorff: samples per side
+  std::string primitives = "auto";  ///< auto | ma (the envelope's distance) | rt (the spheres)
 };
 CLI::App* add_vdb(CLI::App& app, VdbArgs& args);
 int run_vdb(const VdbArgs& args);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 namespace mg::evaluate {
@@ -16,9 +17,10 @@ namespace {
 class VoxelSearch {
  public:
   /// @param exponent  the model's d ln(measure) / d ln h before two probes give a slope
-  VoxelSearch(const MedialSurface& atoms, double target, double exponent,
-              std::function<double(const VdbMesh&)> measure, int max_probes)
+  VoxelSearch(const MedialSurface& atoms, garbing::PrimitiveSet primitives, double target,
+              double exponent, std::function<double(const VdbMesh&)> measure, int max_probes)
       : atoms_(atoms),
+        primitives_(primitives),
         target_(target),
         exponent_(exponent),
         measure_(std::move(measure)),
@@ -27,6 +29,9 @@ class VoxelSearch {
       throw InvalidInput("voxel search: probes must be in [1, 20], got " +
                          std::to_string(max_probes));
     validate(atoms);
+    if (garbing::resolve(primitives, atoms) == garbing::PrimitiveSet::envelope)
+      envelope_ = std::make_unique<garbing::TargetShape>(
+          garbing::make_target_shape(atoms, garbing::PrimitiveSet::envelope, {}));
     const double diagonal = spheres_bbox_diagonal(atoms);
     x_min_ = std::log(diagonal / 2000);
     x_max_ = std::log(diagonal / 20);
@@ -45,7 +50,8 @@ class VoxelSearch {
         break;  // clamped onto a voxel already tried: no progress possible
       VdbOptions opt;
       opt.voxel = std::exp(x);
-      VdbMesh mesh = vdb_mesh(atoms_, opt);
+      opt.primitives = primitives_;
+      VdbMesh mesh = envelope_ ? vdb_mesh(*envelope_, opt) : vdb_mesh(atoms_, opt);
       const double value = measure_(mesh);
       const double y = std::log(std::max(value, 1e-300) / target_);
       result.probes.push_back({mesh.voxel, value, mesh.mesh.points.size()});
@@ -89,6 +95,8 @@ class VoxelSearch {
   }
 
   const MedialSurface& atoms_;
+  garbing::PrimitiveSet primitives_;
+  std::unique_ptr<garbing::TargetShape> envelope_;  // G, built once, on the envelope's path
   double target_, exponent_;
   std::function<double(const VdbMesh&)> measure_;
   int max_probes_;
@@ -98,24 +106,26 @@ class VoxelSearch {
 
 }  // namespace
 
-VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices, int max_probes) {
+VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices, int max_probes,
+                            garbing::PrimitiveSet primitives) {
   if (vertices < 1) throw InvalidInput("--match-vertices must be >= 1");
   return VoxelSearch(
-             atoms, static_cast<double>(vertices), /*exponent=*/-2.0,
+             atoms, primitives, static_cast<double>(vertices), /*exponent=*/-2.0,
              [](const VdbMesh& m) { return static_cast<double>(m.mesh.points.size()); }, max_probes)
       .run();
 }
 
 VdbMatch vdb_match_hausdorff(const MedialSurface& atoms, double percent,
                              const PolygonSoup& reference, const MeshDistanceOptions& distance,
-                             const std::string& reference_name, int max_probes) {
+                             const std::string& reference_name, int max_probes,
+                             garbing::PrimitiveSet primitives) {
   if (!(percent > 0) || !std::isfinite(percent)) {
     std::ostringstream m;
     m << "--match-hausdorff percent must be > 0, got " << percent;
     throw InvalidInput(m.str());
   }
   return VoxelSearch(
-             atoms, percent, /*exponent=*/1.0,
+             atoms, primitives, percent, /*exponent=*/1.0,
              [&](const VdbMesh& m) {
                MeshDistanceOptions opt = distance;
                if (opt.samples > 0 && opt.vertices_and_edges)  // Metro takes every vertex

@@ -182,6 +182,37 @@ class EvaluateCli(U.CliTestCase):
                 outs.append(f.read())
         self.assertEqual(outs[0], outs[1])
 
+    def test_vdb_envelope_of_a_medial_mesh(self):
+        # Two disjoint balls and their edge: the envelope is one capsule, the balls two spheres.
+        capsule = self.write("capsule.ma", "2 1 0\nv 0 0 0 0.5\nv 2 0.1 -0.05 0.35\ne 0 1\n")
+        outs = {}
+        for name, threads, extra in [("ma1", "1", []), ("ma2", "2", []),
+                                     ("rt", "2", ["--primitives", "rt"])]:
+            out = self.path("capsule_%s.off" % name)
+            j = run_json("--threads", threads, "vdb", capsule, "-o", out, "--voxel", "0.03",
+                         *extra)
+            info = json.loads(U.run(MODELS, "info", out, "--json").stdout)
+            self.assertEqual(info["vertices"], j["vertices"])
+            self.assertTrue(info["closed"] and info["manifold"] and info["oriented"])
+            with open(out, "rb") as f:
+                outs[name] = (j, info, f.read())
+        j, info, _ = outs["ma1"]
+        self.assertEqual((j["primitives"], j["cones"], j["slabs"]), ("ma", 1, 0))
+        self.assertEqual((info["components"], info["genus"]), (1, 0))
+        self.assertEqual(outs["ma1"][2], outs["ma2"][2])
+        j, info, _ = outs["rt"]
+        self.assertEqual((j["primitives"], j["cones"], j["slabs"]), ("rt", 0, 0))
+        self.assertEqual(info["components"], 2)
+        # One face, its voxel searched.
+        face = self.write("face.ma", "3 0 1\nv 0 0 0 0.3\nv 2 0 0.1 0.2\nv 0.8 1.6 0 0.25\n"
+                                     "f 0 1 2\n")
+        out = self.path("face.off")
+        j = run_json("vdb", face, "-o", out, "--match-vertices", "5000")
+        self.assertEqual((j["primitives"], j["cones"], j["slabs"]), ("ma", 3, 1))
+        self.assertLess(abs(j["vertices"] / 5000 - 1), 0.05)
+        info = json.loads(U.run(MODELS, "info", out, "--json").stdout)
+        self.assertEqual((info["components"], info["genus"], info["closed"]), (1, 0, True))
+
     # --- bad input ------------------------------------------------------------------------
     def test_missing_file(self):
         r = run("distance", self.path("none.off"), self.path("s1.off"))
@@ -228,6 +259,8 @@ class EvaluateCli(U.CliTestCase):
         self.assert_refused(r, 2, "'x' is not a percentage", [out])
         r = run("vdb", self.path("one.ma"), "-o", out, "--voxel", "5")
         self.assert_refused(r, 2, "every sphere is under 1.5 voxels", [out])
+        r = run("vdb", self.path("one.ma"), "-o", out, "--primitives", "cones")
+        self.assert_refused(r, 2, "unknown primitive set 'cones'", [out])
         r = run("skin", self.path("one.ma"), "-o", self.path("x.xyz"))
         self.assert_refused(r, 2, "unknown mesh extension", [self.path("x.xyz")])
         r = run("distance", self.path("s1.off"))
