@@ -34,11 +34,21 @@ void for_each_leaf_primitive(const Context& ctx, int leaf, Visit&& visit) {
   for (int k : cell.slabs) visit(ctx.g.slab_id(k));
 }
 
-/// P(c) of a leaf, appended sorted, without repeats.
+/// P(c) of a leaf, appended sorted, without repeats: the primitives whose piece meets the cube
+/// (a slab of one of its balls only when its prism does).
 void add_leaf_primitives(const Context& ctx, int leaf, std::vector<PrimitiveId>& out) {
+  const std::size_t start = out.size();
   for_each_leaf_primitive(ctx, leaf, [&](PrimitiveId g) { out.push_back(g); });
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  std::sort(out.begin() + static_cast<long>(start), out.end());
+  out.erase(std::unique(out.begin() + static_cast<long>(start), out.end()), out.end());
+  if (ctx.g.slab_count() == 0) return;
+  const Eigen::AlignedBox3d cube = ctx.tree.cube(ctx.tree.cells[leaf]);
+  out.erase(std::remove_if(out.begin() + static_cast<long>(start), out.end(),
+                           [&](PrimitiveId g) {
+                             return ctx.g.is_slab(g) &&
+                                    !prism_meets_box(ctx.g.slab(g), cube.min(), cube.max());
+                           }),
+            out.end());
 }
 
 /// The leaf holding the point q that a line with direction dir enters there: on a cell

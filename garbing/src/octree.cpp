@@ -405,7 +405,8 @@ class OctreeBuilder {
         const auto [first, last] = g_.cones_of_atom(parent.spheres[x]);
         for (const PrimitiveId* id = first; id != last; ++id) consider(*id - n);
       }
-    // Slabs(child) likewise: the slabs meeting the cube where none of their balls does.
+    // Slabs(child): the slabs whose prism meets the cube where none of their balls does (the
+    // rest of a slab's solid is its edge hulls, listed above as cones or balls).
     const int first_slab = g_.slab_id(0);
     const Vec3 parent_hi = parent_lo + Vec3::Constant(2 * side);
     auto consider_slab = [&](int k) {
@@ -415,13 +416,13 @@ class OctreeBuilder {
       const Slab& slab = g_.slab(first_slab + k);
       const unsigned via_ball =
           mask_of_atom[slab.atoms[0]] | mask_of_atom[slab.atoms[1]] | mask_of_atom[slab.atoms[2]];
-      if ((via_ball | skip) == 0xFF ||
-          !bounding_box(slab).intersects(Eigen::AlignedBox3d(parent_lo, parent_hi)))
+      if ((via_ball | skip) == 0xFF || !slab.has_tangent_triangles ||
+          !slab.prism_box.intersects(Eigen::AlignedBox3d(parent_lo, parent_hi)))
         return;
       for (int j = 0; j < 8; ++j) {
         if ((skip >> j & 1) || (via_ball >> j & 1)) continue;
         const Vec3 child_lo(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]);
-        if (slab_meets_box(slab, child_lo, Vec3(child_lo + Vec3::Constant(side))))
+        if (prism_meets_box(slab, child_lo, Vec3(child_lo + Vec3::Constant(side))))
           out[j].slabs.push_back(k);
       }
     };

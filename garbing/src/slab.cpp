@@ -49,33 +49,6 @@ double support_gap(const Slab& k, const Vec3& n, const Vec3& p) {
   return h - n.dot(p);
 }
 
-/// Whether the line o + t d enters the prism between the tangent triangles, as [t0, t1].
-bool prism_interval(const Slab& k, const Vec3& o, const Vec3& d, double& t0, double& t1) {
-  t0 = -kInf;
-  t1 = kInf;
-  auto clip = [&](const Vec3& n, double offset) {  // keep n . x <= offset
-    const double dn = n.dot(d), gap = offset - n.dot(o);
-    if (dn == 0) return gap >= 0;
-    const double t = gap / dn;
-    if (dn > 0)
-      t1 = std::min(t1, t);
-    else
-      t0 = std::max(t0, t);
-    return t0 <= t1;
-  };
-  for (int side = 0; side < 2; ++side)
-    if (!clip(k.tangent_normal[side], k.tangent_normal[side].dot(k.tangent[side][0]))) return false;
-  for (int e = 0; e < 3; ++e) {
-    const Vec3& a = k.tangent[0][e];
-    const Vec3& b = k.tangent[0][(e + 1) % 3];
-    const Vec3& third = k.tangent[0][(e + 2) % 3];
-    Vec3 m = (b - a).cross(k.normal);  // the side plane holds the direction nu
-    if (m.dot(third - a) > 0) m = -m;
-    if (!clip(m, m.dot(a))) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 bool collinear_centres(const MedialAtom& a, const MedialAtom& b, const MedialAtom& c) {
@@ -110,6 +83,23 @@ Slab make_slab(const MedialAtom& a, const MedialAtom& b, const MedialAtom& c, in
     s.tangent_normal[1] = (-s.gradient - root * s.normal).normalized();
     for (int side = 0; side < 2; ++side)
       for (int x = 0; x < 3; ++x) s.tangent[side][x] = s.c[x] + s.r[x] * s.tangent_normal[side];
+    // The prism's faces: the tangent planes, then the side planes through the edges of the
+    // tangent triangle (they hold nu), each turned away from the opposite corner.
+    for (int side = 0; side < 2; ++side) {
+      s.prism_normal[side] = s.tangent_normal[side];
+      s.prism_offset[side] = s.tangent_normal[side].dot(s.tangent[side][0]);
+    }
+    for (int e = 0; e < 3; ++e) {
+      const Vec3& from = s.tangent[0][e];
+      const Vec3& to = s.tangent[0][(e + 1) % 3];
+      const Vec3& third = s.tangent[0][(e + 2) % 3];
+      Vec3 m = (to - from).cross(s.normal).normalized();
+      if (m.dot(third - from) > 0) m = -m;
+      s.prism_normal[2 + e] = m;
+      s.prism_offset[2 + e] = m.dot(from);
+    }
+    for (const auto& triangle : s.tangent)
+      for (const Vec3& v : triangle) s.prism_box.extend(v);
   }
   double longest = 0, steepest = 0;
   for (int e = 0; e < 3; ++e) {
@@ -241,6 +231,48 @@ bool line_interval(const Slab& k, const Vec3& o, const Vec3& d, double& t0, doub
   t0 = lo;
   t1 = hi;
   return true;
+}
+
+bool prism_interval(const Slab& k, const Vec3& o, const Vec3& d, double& t0, double& t1) {
+  if (!k.has_tangent_triangles) return false;
+  double lo = -kInf, hi = kInf;
+  for (int f = 0; f < 5; ++f) {  // keep n . x <= offset
+    const double dn = k.prism_normal[f].dot(d), gap = k.prism_offset[f] - k.prism_normal[f].dot(o);
+    if (dn == 0) {
+      if (gap < 0) return false;
+      continue;
+    }
+    const double t = gap / dn;
+    if (dn > 0)
+      hi = std::min(hi, t);
+    else
+      lo = std::max(lo, t);
+    if (!(lo <= hi)) return false;
+  }
+  t0 = lo;
+  t1 = hi;
+  return true;
+}
+
+double prism_depth(const Slab& k, const Vec3& p) {
+  if (!k.has_tangent_triangles) return -kInf;
+  double depth = kInf;
+  for (int f = 0; f < 5; ++f)
+    depth = std::min(depth, k.prism_offset[f] - k.prism_normal[f].dot(p));
+  return depth;
+}
+
+Vec3 prism_boundary_point(const Slab& k, const Vec3& p) {
+  int nearest = 0;
+  double depth = kInf;
+  for (int f = 0; f < 5; ++f) {
+    const double gap = k.prism_offset[f] - k.prism_normal[f].dot(p);
+    if (gap < depth) {
+      depth = gap;
+      nearest = f;
+    }
+  }
+  return p + depth * k.prism_normal[nearest];
 }
 
 Vec3 migration_vector(const Slab& k, const Vec3& v) {

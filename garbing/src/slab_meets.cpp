@@ -23,10 +23,41 @@ bool slab_reaches(const Slab& k, const Distance& dist) {
       [&](double s, double t) { return dist(k.centre(s, t)) - k.radius(s, t); }, k.lipschitz);
 }
 
-/// Whether the prism between the tangent triangles meets the box (centre, half extents):
-/// separating axes of two convex polytopes (the box's 3 axes, the prism's 5 face normals, and
-/// the cross products of their edge directions).
-bool prism_meets_box(const Slab& k, const Vec3& centre, const Vec3& half) {
+}  // namespace
+
+bool slab_meets_box(const Slab& k, const Vec3& lo, const Vec3& hi) {
+  if (!bounding_box(k).intersects(Eigen::AlignedBox3d(lo, hi))) return false;
+  for (int i = 0; i < 3; ++i)
+    if (box_distance(lo, hi, k.c[i]) <= k.r[i]) return true;
+  // The box's centre: slab_distance is 1-Lipschitz, so within the inscribed ball it meets, and
+  // beyond the circumscribed ball it misses. A box inside the slab is met here; any other box
+  // meeting it meets its boundary, which lies on its balls, edge cones and tangent triangles.
+  const Vec3 centre = (lo + hi) / 2, half = (hi - lo) / 2;
+  const double at_centre = slab_distance(k, centre);
+  if (at_centre <= half.minCoeff()) return true;
+  if (at_centre > half.norm()) return false;
+  for (int e = 0; e < 3; ++e)
+    if (!k.edge_is_ball[e] && hull_meets_box(k.edge[e], lo, hi)) return true;
+  return prism_meets_box(k, lo, hi);
+}
+
+bool slab_meets_ball(const Slab& k, const MedialAtom& b) {
+  return slab_distance(k, b.centre) <= b.radius;
+}
+
+bool slab_meets_cone(const Slab& k, const Cone& cone) {
+  return detail::convex_reaches_zero(
+      [&](double t) { return slab_distance(k, cone.centre(t)) - cone.radius(t); }, cone.lipschitz);
+}
+
+bool slabs_meet(const Slab& a, const Slab& b) {
+  return slab_reaches(a, [&](const Vec3& x) { return slab_distance(b, x); });
+}
+
+bool prism_meets_box(const Slab& k, const Vec3& lo, const Vec3& hi) {
+  if (!k.has_tangent_triangles || !k.prism_box.intersects(Eigen::AlignedBox3d(lo, hi)))
+    return false;
+  const Vec3 centre = (lo + hi) / 2, half = (hi - lo) / 2;
   std::array<Vec3, 6> v;
   for (int side = 0; side < 2; ++side)
     for (int i = 0; i < 3; ++i) v[3 * side + i] = k.tangent[side][i] - centre;
@@ -43,52 +74,19 @@ bool prism_meets_box(const Slab& k, const Vec3& centre, const Vec3& half) {
     const double slack = 1e-12 * (std::abs(a) + std::abs(b) + reach);
     return a > reach + slack || b < -reach - slack;
   };
-  for (int e = 0; e < 3; ++e)
-    if (separates(Vec3::Unit(e))) return false;
+  // The box's own axes: the boxes' test above.
   std::array<Vec3, 7> edges;
   for (int i = 0; i < 3; ++i) {
     edges[i] = v[(i + 1) % 3] - v[i];
     edges[3 + i] = v[3 + (i + 1) % 3] - v[3 + i];
   }
   edges[6] = k.normal;  // the side faces hold the direction nu
-  if (separates(k.tangent_normal[0]) || separates(k.tangent_normal[1])) return false;
-  for (int i = 0; i < 3; ++i)
-    if (separates(edges[i].cross(k.normal))) return false;
+  for (const Vec3& n : k.prism_normal)
+    if (separates(n)) return false;
   for (const Vec3& d : edges)
     for (int e = 0; e < 3; ++e)
       if (separates(d.cross(Vec3::Unit(e)))) return false;
   return true;
-}
-
-}  // namespace
-
-bool slab_meets_box(const Slab& k, const Vec3& lo, const Vec3& hi) {
-  if (!bounding_box(k).intersects(Eigen::AlignedBox3d(lo, hi))) return false;
-  for (int i = 0; i < 3; ++i)
-    if (box_distance(lo, hi, k.c[i]) <= k.r[i]) return true;
-  // The box's centre: slab_distance is 1-Lipschitz, so within the inscribed ball it meets, and
-  // beyond the circumscribed ball it misses. A box inside the slab is met here; any other box
-  // meeting it meets its boundary, which lies on its balls, edge cones and tangent triangles.
-  const Vec3 centre = (lo + hi) / 2, half = (hi - lo) / 2;
-  const double at_centre = slab_distance(k, centre);
-  if (at_centre <= half.minCoeff()) return true;
-  if (at_centre > half.norm()) return false;
-  for (int e = 0; e < 3; ++e)
-    if (!k.edge_is_ball[e] && hull_meets_box(k.edge[e], lo, hi)) return true;
-  return k.has_tangent_triangles && prism_meets_box(k, centre, half);
-}
-
-bool slab_meets_ball(const Slab& k, const MedialAtom& b) {
-  return slab_distance(k, b.centre) <= b.radius;
-}
-
-bool slab_meets_cone(const Slab& k, const Cone& cone) {
-  return detail::convex_reaches_zero(
-      [&](double t) { return slab_distance(k, cone.centre(t)) - cone.radius(t); }, cone.lipschitz);
-}
-
-bool slabs_meet(const Slab& a, const Slab& b) {
-  return slab_reaches(a, [&](const Vec3& x) { return slab_distance(b, x); });
 }
 
 }  // namespace mg::garbing

@@ -95,13 +95,17 @@ TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::arra
   index_by_atom(
       n, slabs_.size(), first_slab_, [&](std::size_t k) { return slabs_[k].atoms; },
       slabs_by_atom_start_, slabs_by_atom_);
+  // The hierarchy holds each primitive's own piece: a slab's prism (its balls and edge hulls
+  // are primitives of G), none for a slab without tangent triangles.
   std::vector<detail::Box> boxes;
   boxes.reserve(primitive_count());
   for (const auto& s : atoms_.atoms) boxes.push_back(box_of(bounding_box(s)));
   for (const auto& c : cones_) boxes.push_back(box_of(bounding_box(c)));
-  for (const auto& s : slabs_) boxes.push_back(box_of(bounding_box(s)));
-  std::vector<int> ids(boxes.size());
-  std::iota(ids.begin(), ids.end(), 0);
+  for (const auto& s : slabs_) boxes.push_back(box_of(s.prism_box));
+  std::vector<int> ids;
+  ids.reserve(boxes.size());
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+    if (!is_slab(i) || slab(i).has_tangent_triangles) ids.push_back(i);
   bvh_->build(std::move(boxes), std::move(ids));
 }
 
@@ -121,14 +125,14 @@ Vec3 TargetShape::migration_vector(PrimitiveId i, const Vec3& v) const {
 }
 
 bool TargetShape::primitive_contains(PrimitiveId i, const Vec3& p, double eps) const {
-  if (is_slab(i)) return contains_deeper_than(slab(i), p, eps);
+  if (is_slab(i)) return prism_depth(slab(i), p) > eps;
   return is_sphere(i) ? contains_deeper_than(atoms_.atoms[i], p, eps)
                       : contains_deeper_than(cone(i), p, eps);
 }
 
 bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& dir, double& t0,
                                double& t1) const {
-  if (is_slab(i)) return line_interval(slab(i), origin, dir, t0, t1);
+  if (is_slab(i)) return prism_interval(slab(i), origin, dir, t0, t1);
   return is_sphere(i) ? line_interval(atoms_.atoms[i], origin, dir, t0, t1)
                       : line_interval(cone(i), origin, dir, t0, t1);
 }
@@ -144,7 +148,7 @@ bool TargetShape::contains(const Vec3& p) const {
                 } else if (is_cone(i)) {
                   inside = closest_solid_point(cone(i), p) == p;
                 } else {
-                  inside = slab_distance(slab(i), p) <= 0;
+                  inside = prism_depth(slab(i), p) >= 0;
                 }
               });
   return inside;
@@ -325,7 +329,7 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
                 } else if (is_cone(i)) {
                   q = closest_lateral_point(cone(i), p);
                 } else {
-                  q = closest_boundary_point(slab(i), p);
+                  q = prism_boundary_point(slab(i), p);
                 }
                 around.push_back({(q - p).norm(), i, q});
               });
@@ -463,11 +467,7 @@ void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi,
                   return;
                 }
                 if (is_slab(i)) {
-                  const Slab& s = slab(i);
-                  if (meets_box(atoms_.atoms[s.atoms[0]], lo, hi) ||
-                      meets_box(atoms_.atoms[s.atoms[1]], lo, hi) ||
-                      meets_box(atoms_.atoms[s.atoms[2]], lo, hi) || slab_meets_box(s, lo, hi))
-                    out.push_back(i);
+                  if (prism_meets_box(slab(i), lo, hi)) out.push_back(i);
                   return;
                 }
                 const Cone& k = cone(i);

@@ -136,6 +136,50 @@ TEST(Slab, PlateByHand) {
   EXPECT_FALSE(gb::contains_deeper_than(s, c + Vector3d(0, 0, 1.5), -0.4));
 }
 
+// The prism of the plate: the triangle (0, 0), (4, 0), (0, 4) times z in [-1, 1].
+TEST(Slab, PrismOfThePlateByHand) {
+  const gb::Slab s = plate();
+  const Vector3d c(4.0 / 3, 4.0 / 3, 0);
+  // Depth: the least gap to the five faces (z = +-1: 1; x = 0, y = 0: 4/3; x + y = 4: the
+  // centroid is (4 - 8/3) / sqrt 2 from it).
+  EXPECT_NEAR(gb::prism_depth(s, c), (4 - 8.0 / 3) / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(gb::prism_depth(s, c + Vector3d(0, 0, 0.25)), 0.75, 1e-12);
+  EXPECT_NEAR(gb::prism_depth(s, c + Vector3d(0, 0, 1.5)), -0.5, 1e-12);
+  EXPECT_TRUE(
+      (gb::prism_boundary_point(s, c + Vector3d(0, 0, 0.25)) - (c + Vector3d(0, 0, 1))).norm() <
+      1e-12);
+  EXPECT_TRUE((gb::prism_boundary_point(s, Vector3d(0.25, 1, 0.1)) - Vector3d(0, 1, 0.1)).norm() <
+              1e-12);
+  double t0, t1;
+  ASSERT_TRUE(gb::prism_interval(s, c + Vector3d(0, 0, 5), Vector3d(0, 0, -1), t0, t1));
+  EXPECT_NEAR(t0, 4, 1e-12);
+  EXPECT_NEAR(t1, 6, 1e-12);
+  // Along x at y = 1: in from x = 0, out at x + y = 4 (the slab itself reaches x = -1 and beyond
+  // the hypotenuse through its balls and edge cones).
+  ASSERT_TRUE(gb::prism_interval(s, Vector3d(-5, 1, 0), Vector3d(2, 0, 0), t0, t1));
+  EXPECT_NEAR(t0, 2.5, 1e-12);
+  EXPECT_NEAR(t1, 4, 1e-12);
+  EXPECT_FALSE(gb::prism_interval(s, Vector3d(0, 0, 1.5), Vector3d(1, 1, 0), t0, t1));
+  EXPECT_TRUE(gb::prism_meets_box(s, Vector3d(1, 1, 0.9), Vector3d(2, 2, 1.5)));
+  EXPECT_FALSE(gb::prism_meets_box(s, Vector3d(1, 1, 1.1), Vector3d(2, 2, 1.5)));
+  EXPECT_TRUE(gb::prism_meets_box(s, Vector3d(1.9, 1.9, -0.1), Vector3d(2.1, 2.1, 0.1)));
+  EXPECT_FALSE(gb::prism_meets_box(s, Vector3d(2.05, 2.05, -0.1), Vector3d(2.2, 2.2, 0.1)));
+  // A box around the whole prism, and one inside it.
+  EXPECT_TRUE(gb::prism_meets_box(s, Vector3d(-9, -9, -9), Vector3d(9, 9, 9)));
+  EXPECT_TRUE(gb::prism_meets_box(s, Vector3d(1, 1, -0.1), Vector3d(1.2, 1.2, 0.1)));
+}
+
+// A slab too steep for a plane to touch all three balls has no prism: nothing meets it.
+TEST(Slab, NoPrismWithoutTangentTriangles) {
+  const gb::Slab s =
+      slab_of({Vector3d(0, 0, 0), 3}, {Vector3d(1, 0, 0), 0.1}, {Vector3d(0, 1, 0), 0.1});
+  ASSERT_FALSE(s.has_tangent_triangles);
+  double t0, t1;
+  EXPECT_FALSE(gb::prism_interval(s, Vector3d(-5, 0.1, 0), Vector3d(1, 0, 0), t0, t1));
+  EXPECT_EQ(gb::prism_depth(s, Vector3d(0.1, 0.1, 0)), -INFINITY);
+  EXPECT_FALSE(gb::prism_meets_box(s, Vector3d(-9, -9, -9), Vector3d(9, 9, 9)));
+}
+
 TEST(Slab, UnequalRadiiAgainstTheOracle) {
   const gb::Slab s =
       slab_of({Vector3d(0, 0, 0), 1}, {Vector3d(5, 0.5, 0.3), 0.5}, {Vector3d(1, 4, -0.5), 0.25});
@@ -324,6 +368,69 @@ TEST(Slab, PiecesCoverTheSolid) {
     }
   }
   EXPECT_GT(tangent, 40);
+}
+
+// The prism's queries agree with its five planes on random slabs: the depth's sign with the
+// planes, a line's interval ends on the boundary with its middle inside, a box holding a point
+// of the prism always meets it, and one whose distance from the prism exceeds its half-diagonal
+// never does.
+TEST(Slab, PrismQueriesAgreeWithItsPlanes) {
+  std::mt19937 gen(17);
+  std::uniform_real_distribution<double> x(-3, 3), rad(0.05, 1.5), unit(0, 1), side(0.01, 1.5);
+  std::normal_distribution<double> normal;
+  int prisms = 0, lines = 0, boxes_met = 0, boxes_missed = 0;
+  for (int k = 0; k < 100; ++k) {
+    const gb::Slab s = slab_of({Vector3d(x(gen), x(gen), x(gen)), rad(gen)},
+                               {Vector3d(x(gen), x(gen), x(gen)), rad(gen)},
+                               {Vector3d(x(gen), x(gen), x(gen)), rad(gen)});
+    if (!s.has_tangent_triangles) continue;
+    ++prisms;
+    for (int j = 0; j < 50; ++j) {
+      const Vector3d p(x(gen), x(gen), x(gen));
+      const double depth = gb::prism_depth(s, p);
+      if (std::abs(depth) > 1e-9) {
+        EXPECT_EQ(depth > 0, in_prism(s, p, 0)) << p.transpose();
+      }
+      if (depth > 0) {
+        const Vector3d q = gb::prism_boundary_point(s, p);
+        EXPECT_NEAR((q - p).norm(), depth, 1e-12);
+        EXPECT_NEAR(gb::prism_depth(s, q), 0, 1e-12);
+      }
+      const Vector3d d = Vector3d(normal(gen), normal(gen), normal(gen));
+      double t0, t1;
+      if (gb::prism_interval(s, p, d, t0, t1)) {
+        ++lines;
+        EXPECT_LE(t0, t1);
+        EXPECT_NEAR(gb::prism_depth(s, p + t0 * d), 0, 1e-9);
+        EXPECT_NEAR(gb::prism_depth(s, p + t1 * d), 0, 1e-9);
+        EXPECT_GE(gb::prism_depth(s, p + 0.5 * (t0 + t1) * d), -1e-9);
+      }
+      const Vector3d half = Vector3d::Constant(side(gen) / 2);
+      const bool meets = gb::prism_meets_box(s, p - half, p + half);
+      if (depth >= 0) {
+        EXPECT_TRUE(meets) << p.transpose();
+      }
+      if (-depth > half.norm()) {  // the box lies beyond one face plane
+        EXPECT_FALSE(meets) << p.transpose();
+      }
+      // The tangent triangles' corners and centroids, and the prism's centre: if one lies in
+      // the box, the box meets the prism.
+      std::vector<Vector3d> points = {(s.tangent[0][0] + s.tangent[1][1] + s.tangent[0][2]) / 3};
+      for (const auto& t : s.tangent) {
+        points.insert(points.end(), t.begin(), t.end());
+        points.push_back((t[0] + t[1] + t[2]) / 3);
+      }
+      for (const Vector3d& q : points)
+        if (((q - p).cwiseAbs() - half).maxCoeff() <= 0) {
+          EXPECT_TRUE(meets) << p.transpose();
+        }
+      (meets ? boxes_met : boxes_missed) += 1;
+    }
+  }
+  EXPECT_GT(prisms, 30);
+  EXPECT_GT(lines, 100);
+  EXPECT_GT(boxes_met, 100);
+  EXPECT_GT(boxes_missed, 100);
 }
 
 }  // namespace

@@ -42,8 +42,10 @@ struct OctreeCell {
   /// the criteria. Empty in a cell inside one ball and its descendants (they hold no boundary,
   /// and the criteria skip them).
   std::vector<int> cones;
-  /// Slabs(c): likewise the slabs of G (index k: primitive id g.slab_id(k)) whose solid meets
-  /// the closed cube where none of their three balls does, sorted.
+  /// Slabs(c): the slabs of G (index k: primitive id g.slab_id(k)) whose prism (slab.h: the
+  /// slab's solid less its balls and edge hulls, which G holds as balls and cones) meets the
+  /// closed cube where none of their three balls does, sorted. A slab met only through an edge
+  /// hull is not listed: that cone, or its ball, stands for it.
   std::vector<int> slabs;
   bool is_leaf() const { return first_child < 0; }
   bool is_active() const { return !spheres.empty() || !cones.empty() || !slabs.empty(); }
@@ -71,7 +73,8 @@ struct Octree {
 };
 
 /// Step 1: builds T wrapping G. A cell is active when it meets a ball, the solid of a cone
-/// (the convex hull of its two balls) or of a slab (of its three); criteria 1 and 3 see the
+/// (the convex hull of its two balls) or the prism of a slab (so, the hull of its three balls);
+/// criteria 1 and 3 see the
 /// cones of Cones(c) and the slabs of Slabs(c) as primitives too (two primitives sharing an
 /// atom meet; other meetings are tested exactly). So M1 lies outside G within a leaf everywhere,
 /// also over the creases the cones fill, and no migration crosses a crease. G without cones: the

@@ -43,6 +43,12 @@ struct Slab {
   /// touch points c_i + r_i n, in the order of the atoms.
   std::array<std::array<Eigen::Vector3d, 3>, 2> tangent;
   std::array<Eigen::Vector3d, 2> tangent_normal;  ///< n+, n- (unit, outward)
+  /// The prism between the tangent triangles as five half-spaces n . x <= offset (the two
+  /// tangent planes, then the three side planes, which hold the direction nu), and its box.
+  /// Set only with tangent triangles.
+  std::array<Eigen::Vector3d, 5> prism_normal;
+  std::array<double, 5> prism_offset = {0, 0, 0, 0, 0};
+  Eigen::AlignedBox3d prism_box;
   /// The edge hulls: edge k joins atoms (k, k + 1 mod 3); `edge_is_ball[k]` when one ball holds
   /// the other (the hull is the larger ball, `edge_ball[k]` its local index 0..2), otherwise
   /// `edge[k]` is the cone of the two balls (whether or not they intersect).
@@ -90,6 +96,31 @@ bool contains_deeper_than(const Slab& s, const Eigen::Vector3d& p, double eps);
 /// @param d need not be unit; t in units of |d|
 bool line_interval(const Slab& s, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& t0,
                    double& t1);
+
+/// The slab's own piece of G: the prism between its tangent triangles. The rest of its solid
+/// is its balls and edge hulls, which G holds as primitives of their own (a ball, or a cone), so
+/// G's union is the same with each slab replaced by its prism; and the prism is a convex
+/// polytope of five faces, cheap to clip and to test. A slab without tangent triangles has no
+/// prism (its solid is its edge hulls'): the tests below are false for it.
+
+/// The parameter interval [t0, t1] of the line o + t d inside the prism; false if the line
+/// misses it. @param d need not be unit; t in units of |d|
+bool prism_interval(const Slab& s, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& t0,
+                    double& t1);
+
+/// min over the prism's five faces of offset - n . p: inside the closed prism (>= 0), the exact
+/// distance from p to its boundary; outside (< 0), minus at most the distance to the prism.
+/// -infinity without tangent triangles.
+double prism_depth(const Slab& s, const Eigen::Vector3d& p);
+
+/// The closest point of the prism's boundary to p, for p in the prism: its foot on the nearest
+/// face plane. @pre s.has_tangent_triangles
+Eigen::Vector3d prism_boundary_point(const Slab& s, const Eigen::Vector3d& p);
+
+/// Whether the closed prism meets the closed box [lo, hi]: separating axes of two convex
+/// polytopes (the box's 3 axes, the prism's 5 face normals, the cross products of their edge
+/// directions), with a relative 1e-12 slack counted as meeting.
+bool prism_meets_box(const Slab& s, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
 
 /// The migration vector of the slab at v: with p the foot of v on the medial triangle (x* above,
 /// p = c(x*)) and r = r(x*), m_g(v) = r (v - p) / |v - p|^2; zero when x* falls outside the

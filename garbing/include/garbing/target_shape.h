@@ -101,6 +101,11 @@ EnvelopePrimitives envelope_primitives(const MedialSurface& atoms);
 
 /// A primitive of G: id < sphere_count() is the ball of atom id; the next cone_count() ids are
 /// the cones (cone id - sphere_count()), then the slabs.
+///
+/// Each primitive has its own *piece* of G, which the union queries below test: a ball's piece
+/// is the ball, a cone's its solid, a slab's its prism (slab.h): the rest of a slab's solid is
+/// its balls and edge hulls, primitives of G themselves, so the union of the pieces is G's. A
+/// slab without tangent triangles has no piece. m_g is the slab's own (slab.h).
 using PrimitiveId = int;
 
 /// G with its spatial queries, in the coordinates of its frame (every point given to or
@@ -160,12 +165,12 @@ class TargetShape {
   /// Whether p lies in the union (closed primitives).
   bool contains(const Eigen::Vector3d& p) const;
 
-  /// Whether p lies strictly deeper than `eps` inside primitive i (model units; a negative eps
-  /// grows the primitive).
+  /// Whether p lies strictly deeper than `eps` inside primitive i's piece (model units; a
+  /// negative eps grows it).
   bool primitive_contains(PrimitiveId i, const Eigen::Vector3d& p, double eps = 0) const;
 
-  /// Parameter interval [t0, t1] of the line origin + t dir inside primitive i; false if the
-  /// line misses it.
+  /// Parameter interval [t0, t1] of the line origin + t dir inside primitive i's piece; false
+  /// if the line misses it.
   bool ray_interval(PrimitiveId i, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
                     double& t0, double& t1) const;
 
@@ -208,9 +213,9 @@ class TargetShape {
   /// back). Sample k depends only on (seed, k): reproducible at any thread count.
   std::vector<Eigen::Vector3d> sample_boundary(std::size_t count, std::uint64_t seed) const;
 
-  /// Primitives whose solid meets the axis-aligned box [lo, hi] (exact for spheres; for a cone,
-  /// its frustum's bounding box must overlap and the convex hull of its two balls meet the
-  /// box), appended in increasing id order.
+  /// Primitives whose piece meets the axis-aligned box [lo, hi] (exact for spheres and slabs'
+  /// prisms; for a cone, its frustum's bounding box must overlap and the convex hull of its two
+  /// balls meet the box), appended in increasing id order.
   void primitives_meeting_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
                               std::vector<PrimitiveId>& out) const;
 
