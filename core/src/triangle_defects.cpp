@@ -23,13 +23,18 @@ using Triangle = K::Triangle_3;
 using Segment = K::Segment_3;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 
-/// Every pair (f < g) of the faces `ids` whose closed boxes (`boxes`, by face) overlap, sorted:
-/// the broad phase of the full check, in parallel. A grid of cells as large as the 90th
-/// percentile of the boxes' largest sides; each box is listed in the cells it overlaps (one
-/// over more than 64 cells is tested against every box instead), and an overlapping pair is
-/// reported only in the cell holding the low corner of the two boxes' intersection, so once.
+/// Every pair (f < g) of the faces `ids` whose closed boxes (`boxes`, by face) overlap and that
+/// pass `test(f, g)`, sorted: the full check's broad phase with its narrow phase run in place
+/// (no list of the overlapping pairs, which outnumber the triangles tenfold), in parallel. A
+/// grid of cells as large as the 90th percentile of the boxes' largest sides; each box is
+/// listed in the cells it overlaps (one over more than 64 cells is tested against every box
+/// instead), and an overlapping pair is tested only in the cell holding the low corner of the
+/// two boxes' intersection, so once (and a big box's pairs only from the big box, or the
+/// smaller index when both are big).
+template <class Test>
 std::vector<std::array<int, 2>> overlapping_pairs(
-    const std::vector<Eigen::AlignedBox3d>& face_boxes, const std::vector<int>& ids) {
+    const std::vector<Eigen::AlignedBox3d>& face_boxes, const std::vector<int>& ids,
+    const Test& test) {
   std::vector<std::array<int, 2>> out;
   if (ids.size() < 2) return out;
   std::vector<double> extent(ids.size());
@@ -84,15 +89,22 @@ std::vector<std::array<int, 2>> overlapping_pairs(
                             std::int64_t c[3];
                             for (int a = 0; a < 3; ++a) c[a] = std::max(range[bx][a], range[by][a]);
                             const std::uint64_t low = detail::cell_key(c[0], c[1], c[2]);
-                            if (low == here) mine.push_back(pair_of(bx, by));
+                            if (low != here) continue;
+                            const auto pair = pair_of(bx, by);
+                            if (test(pair[0], pair[1])) mine.push_back(pair);
                           }
                       }
                     });
+  std::vector<char> is_big(ids.size(), 0);
+  for (std::size_t b : big) is_big[b] = 1;
   tbb::parallel_for(std::size_t(0), big.size(), [&](std::size_t i) {
     auto& mine = found.local();
     const std::size_t bx = big[i];
-    for (std::size_t by = 0; by < ids.size(); ++by)
-      if (by != bx && box(bx).intersects(box(by))) mine.push_back(pair_of(bx, by));
+    for (std::size_t by = 0; by < ids.size(); ++by) {
+      if (by == bx || (is_big[by] && by < bx) || !box(bx).intersects(box(by))) continue;
+      const auto pair = pair_of(bx, by);
+      if (test(pair[0], pair[1])) mine.push_back(pair);
+    }
   });
   for (auto& part : found) out.insert(out.end(), part.begin(), part.end());
   tbb::parallel_sort(out.begin(), out.end());
@@ -173,8 +185,12 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
 
   // Candidate pairs from the boxes, then the exact tests in parallel; the pairs come out
   // sorted whatever the thread count.
+  if (!subset) {
+    out.intersecting_pairs = overlapping_pairs(box, kept, intersect);
+    return out;
+  }
   std::vector<std::array<int, 2>> candidates;
-  if (subset) {
+  {
     auto cgal_box = [&](int f) {
       const auto& b = box[f];
       return Box(CGAL::Bbox_3(b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(),
@@ -193,8 +209,6 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
         });
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  } else {
-    candidates = overlapping_pairs(box, kept);
   }
   std::vector<char> hit(candidates.size(), 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 1024),

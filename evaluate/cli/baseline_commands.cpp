@@ -4,6 +4,7 @@
 
 #include "core/medial_surface.h"
 #include "core/mesh_io.h"
+#include "core/timer.h"
 #include "evaluate/mesh_distance.h"
 #include "evaluate/timing.h"
 #include "evaluate/vdb_mesh.h"
@@ -65,6 +66,7 @@ int write_result(const BaselineArgs& args, const PolygonSoup& mesh, const StageT
   j["vertices"] = mesh.points.size();
   j["faces"] = mesh.faces.size();
   j["seconds"] = {{"min", t.min}, {"median", t.median}, {"max", t.max}, {"runs", t.seconds}};
+  j["peak_memory_mb"] = peak_memory_mb();  // before the output is written, as garb's
   write_polygon_soup(mesh, args.output);
   emit_report(args.report, j, text);
   return 0;

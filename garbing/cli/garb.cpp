@@ -11,8 +11,6 @@
 #include "core/mesh_topology.h"
 #include "core/timer.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <map>
 
@@ -124,15 +122,14 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
   for (const auto& f : r.m1.faces) owners.push_back(f.owner);
   std::sort(owners.begin(), owners.end());
   owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);  // after the topologies of M1 and M2
+  const double peak_mb = mg::peak_memory_mb();  // after the topologies of M1 and M2
 
   Json j = {{"input", input}, {"atoms", atoms.atoms.size()}};
   j.update(octree_json(r.tree, criteria_off));
   j["boundary_leaves"] = owners.size();
   j["m1"] = m1;
   j["m2"] = m2;
-  j["peak_memory_mb"] = usage.ru_maxrss / 1024.0;
+  j["peak_memory_mb"] = peak_mb;
   j["seconds"] = {{"read", seconds_read},
                   {"octree", r.seconds.octree},
                   {"m1", r.seconds.m1},

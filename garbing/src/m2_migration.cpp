@@ -139,9 +139,11 @@ Locale leaf_locale(const Context& ctx, int leaf) {
   const OctreeCell& owner = ctx.tree.cells[leaf];
   l.side = ctx.tree.side(owner.level);
   l.cover = ctx.tree.cube(owner);
-  std::vector<PrimitiveId> prims;
+  // Gathered in a scratch list (repeats and slabs off the cube included), kept at its size.
+  thread_local std::vector<PrimitiveId> prims;
+  prims.clear();
   add_leaf_primitives(ctx, leaf, prims);
-  l.prims = std::make_shared<const std::vector<PrimitiveId>>(std::move(prims));
+  l.prims = std::make_shared<const std::vector<PrimitiveId>>(prims.begin(), prims.end());
   return l;
 }
 

@@ -270,6 +270,8 @@ class OctreeBuilder {
     return marks;
   }
 
+  static void release(std::vector<int>& list) { std::vector<int>().swap(list); }
+
   /// Splits each marked leaf once (first reason counted), returns the new children.
   std::vector<int> split(const std::vector<std::pair<int, int>>& marks) {
     std::vector<int> to_split;
@@ -293,9 +295,15 @@ class OctreeBuilder {
                       });
     std::vector<int> created;
     created.reserve(8 * to_split.size());
+    tree_.cells.reserve(tree_.cells.size() + 8 * to_split.size());  // no spare capacity
     for (std::size_t i = 0; i < to_split.size(); ++i) {
+      OctreeCell& parent = tree_.cells[to_split[i]];
       const int first = static_cast<int>(tree_.cells.size());
-      tree_.cells[to_split[i]].first_child = first;
+      parent.first_child = first;
+      // Only leaves' lists are read from now on: the children hold theirs.
+      release(parent.spheres);
+      release(parent.cones);
+      release(parent.slabs);
       for (auto& child : children[i]) {
         created.push_back(static_cast<int>(tree_.cells.size()));
         tree_.cells.push_back(std::move(child));

@@ -1,6 +1,8 @@
 #pragma once
 /// \file timer.h
-/// Wall-clock time of a stage, for the programs' `--stats` (steady clock, seconds).
+/// Wall-clock time of a stage and the process's peak memory, for the programs' `--stats`.
+
+#include <sys/resource.h>
 
 #include <chrono>
 
@@ -23,5 +25,12 @@ class Stopwatch {
  private:
   std::chrono::steady_clock::time_point start_;
 };
+
+/// The process's peak resident set size so far (getrusage's ru_maxrss), MB of 2^20 bytes.
+inline double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
 
 }  // namespace mg

@@ -28,7 +28,9 @@ struct OctreeOptions {
   bool skip_interior_cells = true;
 };
 
-/// An octree cell. Integer coordinates: the cell spans [ijk, ijk + 1] * side(level).
+/// An octree cell. Integer coordinates: the cell spans [ijk, ijk + 1] * side(level). Only a
+/// leaf keeps its lists (Spheres, Cones, Slabs): a split hands them down to the children and
+/// releases the parent's, so is_active() means something for leaves only.
 struct OctreeCell {
   int level = 0;
   std::array<std::uint32_t, 3> ijk = {0, 0, 0};
