@@ -66,6 +66,25 @@ class GarbCli(U.CliTestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(json.load(open(self.path("s.json")))["m2"]["primitives"], "rt")
 
+    def test_bad_medial_mesh_lines_are_refused_by_file_and_line(self):
+        atoms = "v 0 0 0 1\nv 2 0 0 1\nv 0 2 0 1\n"
+        for name, text, message in [
+                ("loop.ma", "3 1 0\n" + atoms + "e 2 2\n", "loop.ma:5: edge joins atom 2 to itself"),
+                ("rep.ma", "3 0 1\n" + atoms + "f 0 1 0\n", "rep.ma:5: face repeats atom 0"),
+                ("far.ma", "3 0 1\n" + atoms + "f 0 1 3\n", "far.ma:5: face index 3 out of range [0, 3)")]:
+            r = run(self.write(name, text), "-o", self.path("m.off"), "--stats", self.path("s.json"))
+            self.assert_refused(r, 2, message, [self.path("m.off"), self.path("s.json")])
+
+    def test_collinear_face_is_reduced_and_counted(self):
+        # Three balls on a line: the face's hull is its edge hulls' (no slab), one capsule.
+        ma = self.write("line.ma", "3 0 1\nv 0 0 0 1\nv 2 0 0 0.8\nv 5 0 0 0.6\nf 0 1 2\n")
+        r = run(ma, "-o", self.path("m.off"), "--stats", self.path("s.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        stats = json.load(open(self.path("s.json")))
+        self.assertEqual(stats["m2"]["envelope"]["collinear_faces"], 1)
+        self.assertEqual((stats["m2"]["slabs"], stats["m2"]["cones"]), (0, 3))
+        self.assertEqual((stats["m2"]["components"], stats["m2"]["genus"]), (1, 0))
+
     def test_zero_radius_needs_a_medial_mesh(self):
         r = run(self.write("p.ma", "0 0 0 1\n3 0 0 0\n"), "-o", self.path("m.off"))
         self.assert_refused(r, 2, "atom 1 has radius 0", [self.path("m.off")])
