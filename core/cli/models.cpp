@@ -1,5 +1,8 @@
-// models: generate the project's analytic reference meshes and report a mesh's topology.
+// models: generate the project's analytic reference meshes and medial meshes, and report a
+// mesh's topology.
 //   models generate sphere|torus|bumpy-torus [shape options] -o MESH
+//   models generate medial-capsule|medial-slab|medial-ring|medial-disc|medial-sheets|medial-hand
+//                   [--atoms N] [--hex-rings R] -o OUT.ma
 //   models info MESH [--json]
 #include "core/atomic_file.h"
 #include "core/cli_main.h"
@@ -9,13 +12,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <iomanip>
+#include <string>
+#include <vector>
 
 namespace {
 
+const std::vector<std::string> kMeshShapes = {"sphere", "torus", "bumpy-torus"};
+const std::vector<std::string> kMedialShapes = {"medial-capsule", "medial-slab",   "medial-ring",
+                                                "medial-disc",    "medial-sheets", "medial-hand"};
+
+bool is_medial_shape(const std::string& shape) {
+  return std::find(kMedialShapes.begin(), kMedialShapes.end(), shape) != kMedialShapes.end();
+}
+
 /// `models generate SHAPE -o MESH`: the shape's parameters, defaults as on the command line.
 struct GenerateArgs {
-  std::string shape;  ///< sphere | torus | bumpy-torus
+  std::string shape;  ///< one of kMeshShapes or kMedialShapes
   std::string output;
   int frequency = 18;      ///< sphere: geodesic frequency (V = 10 f^2 + 2)
   double radius = 1.0;     ///< sphere, model units
@@ -26,14 +40,23 @@ struct GenerateArgs {
   double amplitude = 0.1;  ///< bumpy torus: relative bump height
   int bumps_ring = 12;     ///< bumpy torus: bumps around the z axis
   int bumps_tube = 6;      ///< bumpy torus: bumps around the tube
+  int atoms = 16;          ///< medial ring: atoms on the circle
+  int hex_rings = 3;       ///< medial disc: rings of atoms around the centre atom
 };
 
 CLI::App* add_generate(CLI::App& app, GenerateArgs& args) {
-  auto* sub = app.add_subcommand("generate", "write a generated closed triangle mesh");
-  sub->add_option("shape", args.shape, "sphere | torus | bumpy-torus")
+  auto* sub = app.add_subcommand(
+      "generate", "write a generated closed triangle mesh, or a medial mesh (medial-*, .ma)");
+  std::vector<std::string> shapes = kMeshShapes;
+  shapes.insert(shapes.end(), kMedialShapes.begin(), kMedialShapes.end());
+  sub->add_option("shape", args.shape,
+                  "sphere | torus | bumpy-torus (meshes) | medial-capsule | medial-slab | "
+                  "medial-ring | medial-disc | medial-sheets | medial-hand (medial meshes)")
       ->required()
-      ->check(CLI::IsMember({"sphere", "torus", "bumpy-torus"}));
-  sub->add_option("-o,--output", args.output, "output mesh (.off, .obj, .ply, .stl)")->required();
+      ->check(CLI::IsMember(shapes));
+  sub->add_option("-o,--output", args.output,
+                  "output: a mesh (.off, .obj, .ply, .stl), or .ma for a medial mesh")
+      ->required();
   sub->add_option("--frequency", args.frequency, "sphere: geodesic frequency f (V = 10 f^2 + 2)");
   sub->add_option("--radius", args.radius, "sphere: radius, model units");
   sub->add_option("--ring", args.ring, "torus: samples around the z axis");
@@ -43,11 +66,36 @@ CLI::App* add_generate(CLI::App& app, GenerateArgs& args) {
   sub->add_option("--amplitude", args.amplitude, "bumpy torus: relative bump height");
   sub->add_option("--bumps-ring", args.bumps_ring, "bumpy torus: bumps around the z axis");
   sub->add_option("--bumps-tube", args.bumps_tube, "bumpy torus: bumps around the tube");
+  sub->add_option("--atoms", args.atoms, "medial ring: atoms on the circle (>= 3)");
+  sub->add_option("--hex-rings", args.hex_rings,
+                  "medial disc: rings of atoms around the centre atom, 1-100 "
+                  "(V = 3 R^2 + 3 R + 1)");
   return sub;
+}
+
+mg::MedialSurface generate_medial(const GenerateArgs& args) {
+  const std::string& shape = args.shape;
+  if (shape == "medial-capsule") return mg::make_medial_capsule();
+  if (shape == "medial-slab") return mg::make_medial_slab();
+  if (shape == "medial-ring") return mg::make_medial_ring(args.atoms);
+  if (shape == "medial-disc") return mg::make_medial_disc(args.hex_rings);
+  if (shape == "medial-sheets") return mg::make_medial_sheets();
+  return mg::make_medial_hand();
 }
 
 int run_generate(const GenerateArgs& args) {
   mg::check_output_path(args.output, {});
+  const bool ma_output = mg::file_extension(args.output) == ".ma";
+  if (is_medial_shape(args.shape)) {
+    if (!ma_output)
+      throw mg::InvalidInput(args.output + ": " + args.shape +
+                             " is a medial mesh: the output must be a .ma file");
+    mg::write_medial_surface(generate_medial(args), args.output);
+    return 0;
+  }
+  if (ma_output)
+    throw mg::InvalidInput(args.output + ": " + args.shape +
+                           " is a triangle mesh: the output must be .off, .obj, .ply or .stl");
   mg::PolygonSoup soup;
   if (args.shape == "sphere")
     soup = mg::make_geodesic_sphere(args.frequency, args.radius);
@@ -107,7 +155,9 @@ int run_info(const InfoArgs& args) {
 }
 
 int models_main(int argc, char** argv) {
-  CLI::App app{"Generate reference meshes (sphere, torus, bumpy torus) and report mesh topology."};
+  CLI::App app{
+      "Generate reference meshes (sphere, torus, bumpy torus) and medial meshes (.ma), and "
+      "report mesh topology."};
   app.option_defaults()->always_capture_default();
   app.require_subcommand(1);
   GenerateArgs generate;

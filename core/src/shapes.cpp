@@ -2,9 +2,13 @@
 
 #include "core/errors.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
+#include <set>
+#include <string>
+#include <utility>
 
 namespace mg {
 namespace {
@@ -66,6 +70,31 @@ PolygonSoup grid_torus(int ring, int tube, double major, Radius radius) {
     }
   return soup;
 }
+
+/// Builds a medial mesh as a simplicial complex: every side of a face is also an edge, and no
+/// edge is listed twice (in either direction).
+class ComplexBuilder {
+ public:
+  int atom(const Eigen::Vector3d& centre, double radius) {
+    s_.atoms.push_back({centre, radius});
+    return static_cast<int>(s_.atoms.size()) - 1;
+  }
+  void edge(int i, int j) {
+    if (listed_.insert({std::min(i, j), std::max(i, j)}).second) s_.edges.push_back({i, j});
+  }
+  void face(int i, int j, int k) {
+    s_.faces.push_back({i, j, k});
+    edge(i, j);
+    edge(j, k);
+    edge(k, i);
+  }
+  const Eigen::Vector3d& centre(int i) const { return s_.atoms[i].centre; }
+  MedialSurface take() { return std::move(s_); }
+
+ private:
+  MedialSurface s_;
+  std::set<std::pair<int, int>> listed_;
+};
 
 }  // namespace
 
@@ -133,6 +162,136 @@ PolygonSoup make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
                              k & 4 ? hi.z() : lo.z());
   soup.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   return soup;
+}
+
+MedialSurface make_medial_capsule() {
+  ComplexBuilder b;
+  const int a = b.atom(Eigen::Vector3d(-0.5, -0.05, -0.025), 0.4);
+  const int c = b.atom(Eigen::Vector3d(0.5, 0.05, 0.025), 0.2);
+  b.edge(a, c);
+  return b.take();
+}
+
+MedialSurface make_medial_slab() {
+  ComplexBuilder b;
+  const int a = b.atom(Eigen::Vector3d(-0.5, -0.3, 0.0), 0.18);
+  const int c = b.atom(Eigen::Vector3d(0.6, -0.25, 0.05), 0.12);
+  const int d = b.atom(Eigen::Vector3d(0.0, 0.55, 0.15), 0.08);
+  b.face(a, c, d);
+  return b.take();
+}
+
+MedialSurface make_medial_ring(int atoms) {
+  if (atoms < 3)
+    throw InvalidInput("medial ring: need at least 3 atoms, got " + std::to_string(atoms));
+  ComplexBuilder b;
+  for (int k = 0; k < atoms; ++k) {
+    const double t = 2 * kPi * k / atoms;
+    b.atom(Eigen::Vector3d(std::cos(t), std::sin(t), 0.1 * std::sin(3 * t)),
+           0.16 + 0.06 * std::cos(2 * t));
+  }
+  for (int k = 0; k < atoms; ++k) b.edge(k, (k + 1) % atoms);
+  return b.take();
+}
+
+MedialSurface make_medial_disc(int rings) {
+  if (rings < 1 || rings > 100)
+    throw InvalidInput("medial disc: rings must be in [1, 100], got " + std::to_string(rings));
+  // Axial lattice coordinates (q, r): position h (q + r / 2, r sqrt(3) / 2), inside the hexagon
+  // when max(|q|, |r|, |q + r|) <= rings.
+  const double h = 1.0 / rings;
+  auto inside = [rings](int q, int r) {
+    return std::max({std::abs(q), std::abs(r), std::abs(q + r)}) <= rings;
+  };
+  ComplexBuilder b;
+  std::map<std::pair<int, int>, int> id;
+  for (int r = -rings; r <= rings; ++r)
+    for (int q = -rings; q <= rings; ++q) {
+      if (!inside(q, r)) continue;
+      const double x = h * (q + 0.5 * r), y = h * r * std::sqrt(3.0) / 2;
+      const double rho = std::hypot(x, y);
+      id[{q, r}] = b.atom(Eigen::Vector3d(x, y, 0.25 * rho * rho), 0.2 - 0.13 * rho);
+    }
+  // Each lattice rhombus (q, r), (q + 1, r), (q + 1, r + 1), (q, r + 1) gives its two
+  // triangles that lie in the hexagon, CCW seen from +z.
+  // (q, r) itself may lie outside when its second triangle lies inside.
+  for (int r = -rings - 1; r <= rings; ++r)
+    for (int q = -rings - 1; q <= rings; ++q) {
+      if (inside(q, r) && inside(q + 1, r) && inside(q, r + 1))
+        b.face(id[{q, r}], id[{q + 1, r}], id[{q, r + 1}]);
+      if (inside(q + 1, r) && inside(q + 1, r + 1) && inside(q, r + 1))
+        b.face(id[{q + 1, r}], id[{q + 1, r + 1}], id[{q, r + 1}]);
+    }
+  return b.take();
+}
+
+MedialSurface make_medial_sheets() {
+  ComplexBuilder b;
+  const int bottom = b.atom(Eigen::Vector3d(0, 0, -0.5), 0.18);
+  const int top = b.atom(Eigen::Vector3d(0, 0, 0.5), 0.15);
+  b.edge(bottom, top);
+  for (int k = 0; k < 3; ++k) {
+    const double a = kPi / 2 + 2 * kPi * k / 3;
+    const Eigen::Vector3d out(0.8 * std::cos(a), 0.8 * std::sin(a), 0);
+    const int lo = b.atom(out + Eigen::Vector3d(0, 0, -0.5), 0.1 + 0.01 * k);
+    const int hi = b.atom(out + Eigen::Vector3d(0, 0, 0.5), 0.14 - 0.01 * k);
+    b.face(bottom, lo, hi);
+    b.face(bottom, hi, top);
+  }
+  return b.take();
+}
+
+MedialSurface make_medial_hand() {
+  ComplexBuilder b;
+  // Palm: a 4 x 4 grid, cupped (z = 0.3 x^2); thickest inside, thinnest along the top row
+  // (the knuckles). Any two of its balls overlap or keep apart by 0.03 or more: none is near
+  // tangent to another.
+  int palm[4][4];  // [column i][row j]
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const double x = -0.3 + 0.2 * i, y = -0.45 + 0.2 * j;
+      const bool interior = i > 0 && i < 3 && j > 0 && j < 3;
+      const double r = j == 3 ? 0.08 : interior ? 0.17 : 0.16;
+      palm[i][j] = b.atom(Eigen::Vector3d(x, y, 0.3 * x * x), r);
+    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      b.face(palm[i][j], palm[i + 1][j], palm[i + 1][j + 1]);
+      b.face(palm[i][j], palm[i + 1][j + 1], palm[i][j + 1]);
+    }
+  // A chain of atoms at distances d along `direction` from the palm atom `base`, rising by
+  // lift_linear d + lift_square d^2 in z; the first joined to the base.
+  auto chain = [&b](int base, const Eigen::Vector3d& direction, const std::vector<double>& d,
+                    const std::vector<double>& radius, double lift_linear, double lift_square) {
+    const Eigen::Vector3d from = b.centre(base);  // a copy: atom() may move the atoms
+    int previous = base;
+    for (std::size_t k = 0; k < d.size(); ++k) {
+      const Eigen::Vector3d p =
+          from + d[k] * direction +
+          Eigen::Vector3d(0, 0, lift_linear * d[k] + lift_square * d[k] * d[k]);
+      const int next = b.atom(p, radius[k]);
+      b.edge(previous, next);
+      previous = next;
+    }
+  };
+  // Fingers from the top row, fanned out (angle from +y, degrees), curling toward +z.
+  const double angle[4] = {-10, -3, 4, 12};
+  const std::vector<double> d[4] = {
+      {0.2, 0.38, 0.54, 0.68}, {0.2, 0.4, 0.58, 0.74}, {0.2, 0.38, 0.55, 0.7}, {0.18, 0.33, 0.46}};
+  const std::vector<double> r[4] = {{0.07, 0.06, 0.052, 0.045},
+                                    {0.072, 0.063, 0.055, 0.047},
+                                    {0.068, 0.06, 0.052, 0.045},
+                                    {0.06, 0.052, 0.045}};
+  for (int i = 0; i < 4; ++i) {
+    const double a = angle[i] * kPi / 180;
+    const int base = palm[i][3];
+    chain(base, Eigen::Vector3d(std::sin(a), std::cos(a), 0), d[i], r[i], 0, 0.15);
+  }
+  // Thumb from the left side, pointing out and up, rising out of the palm's plane.
+  const int thumb_base = palm[0][1];
+  chain(thumb_base, Eigen::Vector3d(-0.94, 0.34, 0).normalized(), {0.3, 0.48, 0.64},
+        {0.085, 0.07, 0.06}, 0.25, 0);
+  return b.take();
 }
 
 }  // namespace mg

@@ -27,6 +27,45 @@ class ModelsCli(U.CliTestCase):
         self.assertEqual((info["vertices"], info["faces"], info["genus"]), (96, 192, 1))
         self.assertTrue(info["closed"])
 
+    def test_generate_medial_mesh(self):
+        out = os.path.join(self.dir, "ring.ma")
+        r = run("generate", "medial-ring", "--atoms", "12", "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(os.listdir(self.dir), ["ring.ma"])
+        with open(out) as f:
+            lines = [line.split() for line in f if line.strip() and not line.startswith("#")]
+        self.assertEqual(lines[0], ["12", "12", "0"])
+        atoms = [l for l in lines[1:] if l[0] == "v"]
+        edges = [l for l in lines[1:] if l[0] == "e"]
+        self.assertEqual((len(atoms), len(edges)), (12, 12))
+        self.assertFalse([l for l in lines[1:] if l[0] not in ("v", "e")])
+        self.assertTrue(all(float(a[4]) > 0 for a in atoms))
+        # The same file twice: nothing random.
+        again = os.path.join(self.dir, "again.ma")
+        self.assertEqual(run("generate", "medial-ring", "--atoms", "12", "-o", again).returncode, 0)
+        with open(out) as a, open(again) as b:
+            self.assertEqual(a.read(), b.read())
+
+    def test_medial_shape_needs_a_ma_output(self):
+        out = os.path.join(self.dir, "hand.off")
+        r = run("generate", "medial-hand", "-o", out)
+        self.assert_refused(r, 2, "medial-hand is a medial mesh: the output must be a .ma file",
+                            [out])
+        self.assertEqual(os.listdir(self.dir), [])
+
+    def test_mesh_shape_refuses_a_ma_output(self):
+        out = os.path.join(self.dir, "sphere.ma")
+        r = run("generate", "sphere", "--frequency", "2", "-o", out)
+        self.assert_refused(r, 2, "sphere is a triangle mesh: the output must be .off, .obj, "
+                            ".ply or .stl", [out])
+        self.assertEqual(os.listdir(self.dir), [])
+
+    def test_bad_medial_parameters_leave_no_file(self):
+        out = os.path.join(self.dir, "disc.ma")
+        r = run("generate", "medial-disc", "--hex-rings", "0", "-o", out)
+        self.assert_refused(r, 2, "rings must be in [1, 100]", [out])
+        self.assertEqual(os.listdir(self.dir), [])
+
     def test_missing_input_is_an_io_error(self):
         r = run("info", os.path.join(self.dir, "none.off"))
         self.assertEqual(r.returncode, 3)
