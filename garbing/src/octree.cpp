@@ -84,6 +84,21 @@ class OctreeBuilder {
     return (g_.sphere(i).centre - g_.sphere(j).centre).squaredNorm() <= r * r;
   }
 
+  /// Whether two listed balls meet in the criteria's graph: they intersect, or (an envelope)
+  /// a cone joins them. That cone holds both balls, so it meets every cell either meets: it
+  /// belongs to the cell's full primitive set, where it joins them; the lists leave it out
+  /// only because its balls stand for it. Without this, balls joined by an edge that touch
+  /// or just miss each other look apart in every cell holding both, down to the depth stop.
+  /// (The paper's cones join intersecting balls only: no change there.)
+  bool balls_meet(int i, int j) const {
+    if (balls_intersect(i, j)) return true;
+    if (!joined_by_edges_) return false;
+    const auto [first, last] = g_.cones_of_atom(i);
+    for (const PrimitiveId* c = first; c != last; ++c)
+      if (g_.cone(*c).a == j || g_.cone(*c).b == j) return true;
+    return false;
+  }
+
   /// Primitive ids of the criteria, as G's: sphere i is i, cone k is n + k (n atoms).
   int sphere_count() const { return static_cast<int>(g_.sphere_count()); }
 
@@ -107,7 +122,7 @@ class OctreeBuilder {
   bool primitives_meet(int p, int q) const {
     const int n = sphere_count();
     if (p > q) std::swap(p, q);
-    if (q < n) return balls_intersect(p, q);
+    if (q < n) return balls_meet(p, q);
     if (g_.is_slab(q)) {  // ids: spheres, cones, slabs
       const Slab& sq = g_.slab(q);
       if (p < n) {
@@ -158,6 +173,129 @@ class OctreeBuilder {
     return unreached.empty();
   }
 
+  /// An envelope's cells, criteria 1 and 3, first by shared atoms. A cell's full primitive set
+  /// is its lists plus every hull (cone, slab) of one of its balls: such a hull holds the ball,
+  /// so it meets the cell too; the lists leave it out only because the ball stands for it.
+  /// Primitives sharing an atom meet, so the atoms of each primitive of the full set, a listed
+  /// ball with all its neighbours in the medial mesh, fall in one class (union-find): when the
+  /// listed primitives' atoms make one class, the full set is connected. Per thread, over atom
+  /// ids, reset by stamps.
+  class AtomClasses {
+   public:
+    /// Starts an empty partition of the atoms of g (stamps: no clearing of the arrays, which
+    /// outlive a build as thread-locals; a generation never repeats).
+    void clear(const TargetShape& g) {
+      g_ = &g;
+      if (parent_.size() != g.sphere_count()) {
+        parent_.assign(g.sphere_count(), 0);
+        stamp_.assign(g.sphere_count(), 0);
+      }
+      ++generation_;
+    }
+    int find(int a) {
+      if (stamp_[a] != generation_) {
+        stamp_[a] = generation_;
+        parent_[a] = a;
+        return a;
+      }
+      while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
+      return a;
+    }
+    void unite(int a, int b) {
+      a = find(a);
+      b = find(b);
+      if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    }
+    /// The cell's full set: its balls with their neighbours, its cones and slabs.
+    void add_cell(const OctreeCell& cell) {
+      const int n = static_cast<int>(g_->sphere_count());
+      for (int i : cell.spheres) {
+        find(i);
+        const auto [first, last] = g_->cones_of_atom(i);
+        for (const PrimitiveId* c = first; c != last; ++c) unite(g_->cone(*c).a, g_->cone(*c).b);
+        const auto [first_slab, last_slab] = g_->slabs_of_atom(i);
+        for (const PrimitiveId* c = first_slab; c != last_slab; ++c) unite_corners(*c);
+      }
+      for (int k : cell.cones) unite(g_->cone(n + k).a, g_->cone(n + k).b);
+      for (int k : cell.slabs) unite_corners(g_->slab_id(k));
+    }
+    /// Whether the listed primitives' atoms are one class.
+    bool one_class(const OctreeCell& cell) {
+      const int n = static_cast<int>(g_->sphere_count());
+      int root = -1;
+      auto same = [&](int atom) {
+        const int r = find(atom);
+        if (root < 0) root = r;
+        return r == root;
+      };
+      for (int i : cell.spheres)
+        if (!same(i)) return false;
+      for (int k : cell.cones)
+        if (!same(g_->cone(n + k).a)) return false;
+      for (int k : cell.slabs)
+        if (!same(g_->slab(g_->slab_id(k)).atoms[0])) return false;
+      return true;
+    }
+    /// Whether an atom of the cell's full set was added already.
+    bool shares_an_atom(const OctreeCell& cell) const {
+      const int n = static_cast<int>(g_->sphere_count());
+      auto seen = [&](int atom) { return stamp_[atom] == generation_; };
+      for (int i : cell.spheres) {
+        if (seen(i)) return true;
+        const auto [first, last] = g_->cones_of_atom(i);
+        for (const PrimitiveId* c = first; c != last; ++c)
+          if (seen(g_->cone(*c).a) || seen(g_->cone(*c).b)) return true;
+        const auto [first_slab, last_slab] = g_->slabs_of_atom(i);
+        for (const PrimitiveId* c = first_slab; c != last_slab; ++c)
+          for (int a : g_->slab(*c).atoms)
+            if (seen(a)) return true;
+      }
+      for (int k : cell.cones)
+        if (seen(g_->cone(n + k).a) || seen(g_->cone(n + k).b)) return true;
+      for (int k : cell.slabs)
+        for (int a : g_->slab(g_->slab_id(k)).atoms)
+          if (seen(a)) return true;
+      return false;
+    }
+
+   private:
+    void unite_corners(PrimitiveId slab) {
+      const auto& a = g_->slab(slab).atoms;
+      unite(a[0], a[1]);
+      unite(a[0], a[2]);
+    }
+    const TargetShape* g_ = nullptr;
+    std::vector<int> parent_;
+    std::vector<std::uint64_t> stamp_;
+    std::uint64_t generation_ = 0;
+  };
+
+  AtomClasses& atom_classes() const {
+    thread_local AtomClasses classes;
+    classes.clear(g_);
+    return classes;
+  }
+
+  /// Criterion 1: the listed primitives are connected, or (an envelope) the full set is, by
+  /// shared atoms. The lists' test first: it settles nearly every cell.
+  bool cell_connected(const OctreeCell& cell, std::vector<int>& scratch) const {
+    if (primitives_connected(primitives(cell, scratch))) return true;
+    if (!joined_by_edges_) return false;
+    AtomClasses& classes = atom_classes();
+    classes.add_cell(cell);
+    return classes.one_class(cell);
+  }
+
+  /// Criterion 3: the lists meet, or (an envelope) the two full sets share an atom, so that two
+  /// of their primitives meet. The lists' test first.
+  bool cells_intersect(const OctreeCell& a, const OctreeCell& b) const {
+    if (sets_intersect(a, b)) return true;
+    if (!joined_by_edges_) return false;
+    AtomClasses& classes = atom_classes();
+    classes.add_cell(a);
+    return classes.shares_an_atom(b);
+  }
+
   /// Criterion 3's test: some primitive of cell `a` meets some primitive of cell `b` (a
   /// shared one counts), read from the cells' sorted sphere and cone lists without merging
   /// them. Spheres are tried against spheres first.
@@ -165,7 +303,7 @@ class OctreeBuilder {
     if (share_one(a.spheres, b.spheres) || share_one(a.cones, b.cones)) return true;
     for (int s : a.spheres)
       for (int t : b.spheres)
-        if (balls_intersect(s, t)) return true;
+        if (balls_meet(s, t)) return true;
     const int n = sphere_count();
     for (int k : a.cones) {  // cones of a against everything of b
       for (int t : b.spheres)
@@ -237,7 +375,7 @@ class OctreeBuilder {
     if (criterion(2) && cell.level < d && !exempt) marks.emplace_back(c, 2);
     const bool test_1 = criterion(1) && cell.level >= d && !cell.inside_one_ball;
     const bool test_3 = criterion(3) && cell.level >= d && !cell.inside_one_ball;
-    if (test_1 && !primitives_connected(primitives(cell, mine))) marks.emplace_back(c, 1);
+    if (test_1 && !cell_connected(cell, mine)) marks.emplace_back(c, 1);
     if (!criterion(3) && !criterion(4)) return;
     touching_leaves(tree_, c, touching);
     for (int t : touching) {
@@ -247,7 +385,7 @@ class OctreeBuilder {
           contact_dimension(cell, other) >= 1)
         marks.emplace_back(cell.level < other.level ? c : t, 4);
       if (test_3 && other.level >= d && !other.inside_one_ball) {
-        if (!sets_intersect(cell, other)) {
+        if (!cells_intersect(cell, other)) {
           if (cell.level <= other.level) marks.emplace_back(c, 3);
           if (other.level <= cell.level) marks.emplace_back(t, 3);
         }
@@ -474,6 +612,7 @@ class OctreeBuilder {
 
   const TargetShape& g_;
   const OctreeOptions& opt_;
+  const bool joined_by_edges_ = g_.envelope_counts().edges > 0;  // an envelope: atoms joined
   Octree tree_;
 };
 

@@ -1,6 +1,7 @@
 // Medial meshes: G as the envelope of balls, cones and slabs, garbed end to end on analytic
 // envelopes whose topology is known.
 #include "core/mesh_topology.h"
+#include "core/shapes.h"
 #include "core/triangle_defects.h"
 #include "garbing/garb.h"
 
@@ -75,6 +76,23 @@ mg::MedialSurface hexagon_fan(int faces, const Z& z, const R& r) {
   return s;
 }
 
+// One face of equal balls: atoms 1 and 2 touch (their centres 2r apart to rounding), atoms 0
+// and 1 just miss each other. Cells holding ball 2 and the cone (0, 1) saw two primitives
+// apart (the cone grazes ball 2 to rounding) and split down to the depth stop (14 levels
+// against d = 6); the face's slab, left out of those cells' lists because ball 2 stands for
+// it, joins them: the criteria see the full set through shared atoms.
+TEST(Envelope, TouchingBallsOfAFaceStayAtTheMinimalDepth) {
+  mg::MedialSurface s;
+  s.atoms = {{Vector3d(0.10000000000000003, -0.45000000000000001, 0.0030000000000000018), 0.1},
+             {Vector3d(0.3000000000000001, -0.45000000000000001, 0.027000000000000017), 0.1},
+             {Vector3d(0.3000000000000001, -0.25, 0.027000000000000017), 0.1}};
+  s.edges = {{0, 1}, {1, 2}, {0, 2}};
+  s.faces = {{0, 1, 2}};
+  const gb::Garbing r = garb_envelope(s);
+  EXPECT_EQ(r.tree.depth, r.tree.min_depth);
+  expect_garbed(s, r, 1, 0, "touching face");
+}
+
 TEST(Envelope, PrimitivesOfAMedialMesh) {
   mg::MedialSurface s = mg_test::atoms({{Vector3d(0, 0, 0), 1},
                                         {Vector3d(4, 0, 0), 0.5},
@@ -101,17 +119,14 @@ TEST(Envelope, PrimitivesOfAMedialMesh) {
 }
 
 TEST(Envelope, CapsuleOfDisjointUnequalBalls) {
-  mg::MedialSurface s = mg_test::atoms({{Vector3d(0, 0, 0), 1}, {Vector3d(4, 0.5, 0.25), 0.5}});
-  s.edges = {{0, 1}};
+  const mg::MedialSurface s = mg::make_medial_capsule();
   const auto r = garb_envelope(s);
   EXPECT_EQ(r.g.cone_count(), 1u);
   expect_garbed(s, r, 1, 0, "capsule");
 }
 
 TEST(Envelope, OneSlabOfThreeBalls) {
-  mg::MedialSurface s = mg_test::atoms(
-      {{Vector3d(0, 0, 0), 0.6}, {Vector3d(4, 0, 0), 0.4}, {Vector3d(1, 3, 0.5), 0.3}});
-  s.faces = {{0, 1, 2}};
+  const mg::MedialSurface s = mg::make_medial_slab();  // its sides listed as edges too
   const auto r = garb_envelope(s);
   ASSERT_EQ(r.g.slab_count(), 1u);
   EXPECT_EQ(r.g.cone_count(), 3u);
@@ -145,16 +160,15 @@ TEST(Envelope, OneSlabOfThreeBalls) {
 }
 
 TEST(Envelope, RingOfEdgesHasGenusOne) {
-  mg::MedialSurface s = mg_test::ring(12, 3, 0.4);  // neighbours 1.55 apart: disjoint balls
-  for (int k = 0; k < 12; ++k) s.edges.push_back({k, (k + 1) % 12});
+  // 16 atoms, neighbouring balls overlapping on two arcs and disjoint on the other two.
+  const mg::MedialSurface s = mg::make_medial_ring();
   const auto r = garb_envelope(s);
   expect_garbed(s, r, 1, 1, "ring");
 }
 
 TEST(Envelope, TriangulatedDiscIsOneBall) {
-  // A closed hexagon fan, its rim rising and its radii growing.
-  mg::MedialSurface s = hexagon_fan(
-      6, [](int k) { return 0.2 * k; }, [](int k) { return 0.2 + 0.05 * k; });
+  // A closed hexagon fan on a bowl, its radii shrinking from the centre to the rim.
+  const mg::MedialSurface s = mg::make_medial_disc(/*rings=*/1);
   const auto r = garb_envelope(s, 6);
   EXPECT_EQ(r.g.slab_count(), 6u);
   EXPECT_EQ(r.g.cone_count(), 12u);
@@ -163,16 +177,7 @@ TEST(Envelope, TriangulatedDiscIsOneBall) {
 
 TEST(Envelope, ThreeSheetsMeetingAlongAnEdge) {
   // A non-manifold medial mesh: three quads (two triangles each) sharing the edge (0, 1).
-  mg::MedialSurface s = mg_test::atoms({{Vector3d(0, 0, -2), 0.4}, {Vector3d(0, 0, 2), 0.4}});
-  for (int k = 0; k < 3; ++k) {
-    const double a = 2 * M_PI * k / 3;
-    const Vector3d out(3 * std::cos(a), 3 * std::sin(a), 0);
-    const int lo = static_cast<int>(s.atoms.size());
-    s.atoms.push_back({Vector3d(out + Vector3d(0, 0, -2)), 0.25});
-    s.atoms.push_back({Vector3d(out + Vector3d(0, 0, 2)), 0.3});
-    s.faces.push_back({0, lo, lo + 1});
-    s.faces.push_back({0, lo + 1, 1});
-  }
+  const mg::MedialSurface s = mg::make_medial_sheets();
   const auto r = garb_envelope(s, 6);
   EXPECT_EQ(r.g.slab_count(), 6u);
   expect_garbed(s, r, 1, 0, "three sheets");
