@@ -257,8 +257,7 @@ bool prism_interval(const Slab& k, const Vec3& o, const Vec3& d, double& t0, dou
 double prism_depth(const Slab& k, const Vec3& p) {
   if (!k.has_tangent_triangles) return -kInf;
   double depth = kInf;
-  for (int f = 0; f < 5; ++f)
-    depth = std::min(depth, k.prism_offset[f] - k.prism_normal[f].dot(p));
+  for (int f = 0; f < 5; ++f) depth = std::min(depth, k.prism_offset[f] - k.prism_normal[f].dot(p));
   return depth;
 }
 
