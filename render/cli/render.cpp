@@ -1,10 +1,12 @@
-// render: POV-Ray pictures of meshes and medial surfaces (union of spheres coloured by radius).
+// render: POV-Ray pictures of meshes and medial surfaces (union of spheres coloured by radius;
+// a medial mesh as its envelope: the spheres, its edges' cones and its faces' slabs).
 //   render INPUT... -o OUTPUT.png [--pov SCENE.pov] [--width W] [--height H] [--view VIEW.json]
 //          [--direction X Y Z] [--fov DEG] [--flat] [--crease DEG] [--normals angle|area]
-//          [--transmit T] [--antialias T] [--threads N] [--povray EXE]
+//          [--primitives auto|ma|rt] [--transmit T] [--antialias T] [--threads N] [--povray EXE]
 #include "core/atomic_file.h"
 #include "core/cli_main.h"
 #include "core/mesh_io.h"
+#include "garbing/target_shape.h"
 #include "render/povray_scene.h"
 #include "render/run_povray.h"
 #include "render/view.h"
@@ -48,10 +50,11 @@ mg::render::View choose_view(const std::string& view_path, bool view_exists, boo
 int render_main(int argc, char** argv) {
   CLI::App app{
       "Render meshes (.off .obj .ply .stl) and medial surfaces (.ma .xyzr: spheres coloured by "
-      "radius, red = small to blue = large) with POV-Ray, in one scene framed on the first input."};
+      "radius, red = small to blue = large; a medial mesh as its envelope, with the cones of its "
+      "edges and the slabs of its faces) with POV-Ray, in one scene framed on the first input."};
   app.option_defaults()->always_capture_default();
   std::vector<std::string> inputs;
-  std::string output, pov_path, view_path, normals = "angle";
+  std::string output, pov_path, view_path, normals = "angle", primitives = "auto";
   int width = 0, height = 0;
   std::vector<double> direction;
   mg::render::FramingOptions framing;
@@ -79,6 +82,9 @@ int render_main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 180.0));
   app.add_option("--normals", normals, "vertex normal weighting: angle | area")
       ->check(CLI::IsMember({"angle", "area"}));
+  app.add_option("--primitives", primitives,
+                 "medial surfaces: ma (the envelope: balls, a cone per edge, a slab per face), rt "
+                 "(the balls alone), auto (ma when the file has edges or faces)");
   app.add_option("--transmit", scene_opt.mesh_transmit,
                  "meshes let this fraction of light through, [0, 1) (e.g. 0.6 shows atoms inside)")
       ->check(CLI::Range(0.0, 0.99));
@@ -105,6 +111,11 @@ int render_main(int argc, char** argv) {
     mg::check_output_path(view_path, inputs);
   if (!direction.empty())
     framing.direction = Eigen::Vector3d(direction[0], direction[1], direction[2]);
+  try {
+    scene_opt.primitives = mg::garbing::parse_primitive_set(primitives);
+  } catch (const mg::InvalidInput& e) {
+    throw mg::InvalidInput(std::string("--primitives: ") + e.what());
+  }
   scene_opt.normals.weighting =
       normals == "area" ? mg::render::NormalWeighting::area : mg::render::NormalWeighting::angle;
 

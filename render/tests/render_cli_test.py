@@ -69,9 +69,16 @@ class RenderCli(U.CliTestCase):
         super().setUpClass()
         inputs = U.temporary_folder(cls.addClassCleanup)
         cls.sphere = U.generate(MODELS, os.path.join(inputs, "sphere.off"), "sphere", "--frequency", "6")
-        cls.atoms = os.path.join(inputs, "two.ma")
+        cls.atoms = os.path.join(inputs, "two.ma")  # two disjoint balls and an edge: a capsule
         with open(cls.atoms, "w") as f:
             f.write("2 1 0\nv -1 0 0 0.3\nv 1 0 0 0.6\ne 0 1\n")
+        cls.atoms_alone = os.path.join(inputs, "two_alone.ma")
+        with open(cls.atoms_alone, "w") as f:
+            f.write("2 0 0\nv -1 0 0 0.3\nv 1 0 0 0.6\n")
+        # One face whose centroid (0, 0.5, 0) lies outside its three balls, inside its slab.
+        cls.face = os.path.join(inputs, "face.ma")
+        with open(cls.face, "w") as f:
+            f.write("3 0 1\nv -1 0 0 0.3\nv 1 0 0 0.4\nv 0 1.5 0 0.2\nf 0 1 2\n")
 
     def render_ok(self, *args):
         r = run(*args)
@@ -107,7 +114,8 @@ class RenderCli(U.CliTestCase):
 
     def test_two_atoms_coloured_by_radius_where_the_camera_puts_them(self):
         png, view = self.path("atoms.png"), self.path("view.json")
-        self.render_ok(self.atoms, "-o", png, "--width", str(W), "--height", str(H), "--view", view)
+        self.render_ok(self.atoms, "-o", png, "--width", str(W), "--height", str(H), "--view", view,
+                       "--primitives", "rt")  # the balls alone, the edge ignored
         img, mask = self.assert_visible_and_centred(png)
         with open(view) as f:
             v = json.load(f)
@@ -122,6 +130,40 @@ class RenderCli(U.CliTestCase):
             self.assertLess(abs(xs.mean() - px), 0.06 * W, (xs.mean(), px))
             self.assertLess(abs(ys.mean() - py), 0.06 * H, (ys.mean(), py))
         self.assertLess(np.nonzero(red)[1].mean(), np.nonzero(blue)[1].mean())  # +x to the right
+
+    def test_medial_mesh_is_drawn_as_its_envelope(self):
+        # The capsule's cone fills the gap between its balls; the face's slab covers its
+        # centroid, which no ball holds. --primitives rt draws the balls alone, as for a file
+        # without the edge.
+        for ma, gap in ((self.atoms, (-0.15, 0, 0)), (self.face, (0, 0.5, 0))):
+            view = self.path(os.path.basename(ma) + ".json")
+            envelope, balls = self.path("envelope.png"), self.path("balls.png")
+            pov_envelope, pov_balls = self.path("envelope.pov"), self.path("balls.pov")
+            self.render_ok(ma, "-o", envelope, "--pov", pov_envelope, "--width", str(W),
+                           "--height", str(H), "--view", view)
+            self.render_ok(ma, "-o", balls, "--pov", pov_balls, "--view", view, "--primitives", "rt")
+            with open(view) as f:
+                px, py = (int(c) for c in project(json.load(f), gap))
+            self.assertTrue(object_mask(read_png(envelope))[py, px], ma)
+            self.assertFalse(object_mask(read_png(balls))[py, px], ma)
+            with open(pov_envelope) as f:
+                text = f.read()
+            self.assertEqual(len(re.findall(r"^cone \{", text, re.M)), 1 if ma == self.atoms else 3)
+            self.assertEqual(text.count("mesh2 {"), 0 if ma == self.atoms else 1)
+            with open(pov_balls) as f:
+                text = f.read()
+            self.assertNotIn("cone {", text)
+            self.assertNotIn("mesh2", text)
+        # The balls alone are the scene of the same atoms without edges and faces (after the
+        # first line, which names the scene file).
+        pov_alone = self.path("alone.pov")
+        self.render_ok(self.atoms_alone, "--pov", pov_alone, "--view", self.path("two.ma.json"))
+        self.render_ok(self.atoms, "--pov", pov_balls, "--view", self.path("two.ma.json"),
+                       "--primitives", "rt")
+        with open(pov_alone) as fa, open(pov_balls) as fb:
+            alone, balls_text = fa.read(), fb.read()
+        self.assertEqual(alone.split("\n", 1)[1].replace("two_alone.ma", "two.ma"),
+                         balls_text.split("\n", 1)[1])
 
     def test_same_input_and_view_give_identical_bytes(self):
         # At one thread: POV-Ray 3.7 at more threads now and then shades a few pixels
@@ -221,6 +263,8 @@ class RenderCli(U.CliTestCase):
                 (["--transmit", "1.5"], "--transmit"),
                 (["--normals", "cotan"], "--normals"),
                 (["--colour", "red"], "--colour"),
+                (["--primitives", "all"],
+                 "--primitives: unknown primitive set 'all' (expected auto, ma or rt)"),
         ):
             self.assert_refused(run(self.sphere, "-o", png, *args), 2, message, [png])
         self.assert_refused(run(self.sphere, "-o", self.path("x.jpg")), 2, "must be a .png", [png])
