@@ -370,11 +370,11 @@ class OctreeBuilder {
                      std::vector<int>& touching, std::vector<int>& mine) const {
     const OctreeCell& cell = tree_.cells[c];
     if (!cell.is_active()) return;
-    const bool exempt = opt_.skip_interior_cells && cell.inside_one_ball;
+    const bool exempt = opt_.skip_interior_cells && cell.holds_no_boundary();
     const int d = tree_.min_depth;
     if (criterion(2) && cell.level < d && !exempt) marks.emplace_back(c, 2);
-    const bool test_1 = criterion(1) && cell.level >= d && !cell.inside_one_ball;
-    const bool test_3 = criterion(3) && cell.level >= d && !cell.inside_one_ball;
+    const bool test_1 = criterion(1) && cell.level >= d && !cell.holds_no_boundary();
+    const bool test_3 = criterion(3) && cell.level >= d && !cell.holds_no_boundary();
     if (test_1 && !cell_connected(cell, mine)) marks.emplace_back(c, 1);
     if (!criterion(3) && !criterion(4)) return;
     touching_leaves(tree_, c, touching);
@@ -384,7 +384,7 @@ class OctreeBuilder {
       if (criterion(4) && std::abs(cell.level - other.level) > 1 &&
           contact_dimension(cell, other) >= 1)
         marks.emplace_back(cell.level < other.level ? c : t, 4);
-      if (test_3 && other.level >= d && !other.inside_one_ball) {
+      if (test_3 && other.level >= d && !other.holds_no_boundary()) {
         if (!cells_intersect(cell, other)) {
           if (cell.level <= other.level) marks.emplace_back(c, 3);
           if (other.level <= cell.level) marks.emplace_back(t, 3);
@@ -514,7 +514,9 @@ class OctreeBuilder {
     // candidates are the parent's and those of the parent's balls (a cone meets a sub-cube
     // only if it meets the cube). A cube inside one ball holds no boundary and is never tested
     // by criteria 1 and 3: its children need none (they are active through that ball).
-    if (parent.inside_one_ball || (g_.cone_count() == 0 && g_.slab_count() == 0)) return;
+    if (parent.inside_one_hull)
+      for (auto& child : out) child.inside_one_hull = !child.inside_one_ball;
+    if (parent.holds_no_boundary() || (g_.cone_count() == 0 && g_.slab_count() == 0)) return;
     // Per thread: each atom's child mask in this parent, and a stamp per cone against repeats.
     thread_local std::vector<std::uint8_t> mask_of_atom;
     thread_local std::vector<std::uint64_t> stamp;
@@ -584,7 +586,35 @@ class OctreeBuilder {
     for (auto& child : out) {
       std::sort(child.cones.begin(), child.cones.end());
       std::sort(child.slabs.begin(), child.slabs.end());
+      if (g_.is_envelope() && !child.inside_one_ball)
+        child.inside_one_hull = inside_a_listed_hull(child);
     }
+  }
+
+  /// Whether the closed cube of a cell lies inside the solid of one of its listed cones or the
+  /// prism of one of its listed slabs: both convex, so when its eight corners do. (A sparse
+  /// medial mesh's slabs and cones are most of its volume, far from their balls: without this
+  /// criterion 2 splits all of it down to depth d.)
+  bool inside_a_listed_hull(const OctreeCell& cell) const {
+    if (cell.cones.empty() && cell.slabs.empty()) return false;
+    const Eigen::AlignedBox3d cube = tree_.cube(cell);
+    std::array<Vec3, 8> corners;
+    for (int k = 0; k < 8; ++k)
+      corners[k] = cube.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k));
+    const int n = sphere_count();
+    for (int k : cell.slabs) {
+      const Slab& slab = g_.slab(g_.slab_id(k));
+      if (std::all_of(corners.begin(), corners.end(),
+                      [&](const Vec3& q) { return prism_depth(slab, q) >= 0; }))
+        return true;
+    }
+    for (int k : cell.cones) {
+      const Cone& cone = g_.cone(n + k);
+      if (std::all_of(corners.begin(), corners.end(),
+                      [&](const Vec3& q) { return hull_distance(cone, q) <= 0; }))
+        return true;
+    }
+    return false;
   }
 
   void finish() {
@@ -612,7 +642,7 @@ class OctreeBuilder {
 
   const TargetShape& g_;
   const OctreeOptions& opt_;
-  const bool joined_by_edges_ = g_.envelope_counts().edges > 0;  // an envelope: atoms joined
+  const bool joined_by_edges_ = g_.is_envelope();  // atoms joined by the medial mesh
   Octree tree_;
 };
 

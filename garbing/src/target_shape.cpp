@@ -65,7 +65,9 @@ void index_by_atom(std::size_t atom_count, std::size_t count, int first_id, cons
 
 TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
                          const Frame& frame)
-    : TargetShape(atoms, pairs, {}, frame) {}
+    : TargetShape(atoms, pairs, {}, frame) {
+  envelope_ = false;
+}
 
 TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
                          const std::vector<std::array<int, 3>>& triples, const Frame& frame,

@@ -37,6 +37,14 @@ struct OctreeCell {
   int parent = -1;       ///< index in Octree::cells; -1 for the root
   int first_child = -1;  ///< children are cells first_child .. first_child + 7; -1 for a leaf
   bool inside_one_ball = false;  ///< the closed cube lies inside one closed ball
+  /// An envelope's cells only (TargetShape::is_envelope()): the closed cube lies inside the
+  /// solid of one of its listed cones or the prism of one of its listed slabs, or its parent's
+  /// did. Like a cell inside one ball it holds no boundary of G: criterion 2 exempts it
+  /// (skip_interior_cells), criteria 1 and 3 skip it, and its children list no cones or slabs
+  /// (they are active all the same).
+  bool inside_one_hull = false;
+  /// The cube holds no boundary of G: inside one ball or one hull.
+  bool holds_no_boundary() const { return inside_one_ball || inside_one_hull; }
   std::vector<int> spheres;      ///< Spheres(c): atoms whose closed ball meets the closed cube
   /// Cones(c): the cones of G (index k: primitive id sphere_count + k) whose solid meets the
   /// closed cube where neither ball does (through the fill of the crease between the balls),
@@ -50,7 +58,10 @@ struct OctreeCell {
   /// hull is not listed: that cone, or its ball, stands for it.
   std::vector<int> slabs;
   bool is_leaf() const { return first_child < 0; }
-  bool is_active() const { return !spheres.empty() || !cones.empty() || !slabs.empty(); }
+  /// The cube meets G's solid: a listed primitive, or a hull holding it.
+  bool is_active() const {
+    return inside_one_hull || !spheres.empty() || !cones.empty() || !slabs.empty();
+  }
 };
 
 /// The octree, in G's frame. Child k of a cell has offset (k & 1, k >> 1 & 1, k >> 2 & 1).

@@ -117,9 +117,10 @@ class TargetShape {
   /// @pre atoms valid; every pair indexes two intersecting atoms, neither holding the other
   TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
               const Frame& frame = {});
-  /// G of the atoms' balls, the cones of `pairs` and the slabs of `triples`; `counts` are kept
-  /// for reports. @pre as above, and no pair of a triple holds one ball in the other... the
-  /// triples' centres not collinear (envelope_primitives() chooses them so)
+  /// G of a medial mesh's envelope (is_envelope()): the atoms' balls, the cones of `pairs` and
+  /// the slabs of `triples`; `counts` are kept for reports. @pre atoms valid; each pair's balls
+  /// neither holding the other; each triple's centres not collinear (envelope_primitives()
+  /// chooses them so)
   TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
               const std::vector<std::array<int, 3>>& triples, const Frame& frame,
               const EnvelopeCounts& counts = {});
@@ -146,6 +147,9 @@ class TargetShape {
   PrimitiveId slab_id(int k) const { return first_slab_ + k; }
   /// How the medial mesh's edges and faces became primitives (zeros for PrimitiveSet::atoms).
   const EnvelopeCounts& envelope_counts() const { return counts_; }
+  /// Whether G is a medial mesh's envelope (the constructor with slabs), not the paper's G of
+  /// the atoms: the octree then reads its cones and slabs as the envelope's (octree.h).
+  bool is_envelope() const { return envelope_; }
 
   /// The cones with atom `a` as an end, as primitive ids [first, second), increasing.
   std::pair<const PrimitiveId*, const PrimitiveId*> cones_of_atom(int a) const {
@@ -229,6 +233,7 @@ class TargetShape {
   int first_slab_ = 0;                                    // sphere_count + cone_count
   std::vector<int> slabs_by_atom_start_, slabs_by_atom_;  // CSR: atom -> its slabs' ids
   EnvelopeCounts counts_;
+  bool envelope_ = true;
   std::unique_ptr<Bvh> bvh_;
 };
 
