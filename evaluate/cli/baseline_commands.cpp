@@ -5,6 +5,7 @@
 #include "core/medial_surface.h"
 #include "core/mesh_io.h"
 #include "core/timer.h"
+#include "evaluate/atoms_distance.h"
 #include "evaluate/mesh_distance.h"
 #include "evaluate/timing.h"
 #include "evaluate/vdb_mesh.h"
@@ -138,15 +139,26 @@ CLI::App* add_vdb(CLI::App& app, VdbArgs& args) {
                                     "P REF: search the voxel giving a Hausdorff distance to REF "
                                     "of P % of REF's diagonal (at most 5 probes)")
                         ->expected(2);
+  auto* envelope =
+      sub->add_option("--match-envelope", args.match_envelope,
+                      "P: search the voxel giving a Hausdorff distance to G (as `evaluate atoms`) "
+                      "of P % of --diagonal (at most 5 probes)")
+          ->check(Positive);
+  sub->add_option("--diagonal", args.diagonal,
+                  "--match-envelope: diagonal for the %, model units (0 = the spheres' "
+                  "bounding box)")
+      ->check(NonNegative)
+      ->needs(envelope);
   sub->add_option("--samples", args.samples,
-                  "--match-hausdorff: samples per side (0 = default; raised to twice the larger "
-                  "vertex count when below it)");
+                  "--match-hausdorff, --match-envelope: samples per side (0 = default; raised "
+                  "to twice the larger vertex count when below it)");
   sub->add_option(
       "--primitives", args.primitives,
       "what is meshed: auto, ma (a medial mesh's envelope: G's signed distance "
       "sampled) or rt (the spheres alone); auto is ma when the file has edges or faces");
-  voxel->excludes(vertices)->excludes(hausdorff);
-  vertices->excludes(hausdorff);
+  voxel->excludes(vertices)->excludes(hausdorff)->excludes(envelope);
+  vertices->excludes(hausdorff)->excludes(envelope);
+  hausdorff->excludes(envelope);
   add_report_options(*sub, args.baseline.report);
   return sub;
 }
@@ -176,23 +188,44 @@ int run_vdb(const VdbArgs& args) {
   opt.primitives = primitives;
   Json j = Json::object();
   Json probes = Json::array();
-  bool clamped = false;
-  if (args.match_vertices > 0 || !match_ref.empty()) {
+  bool clamped = false, out_of_reach = false;
+  std::string matched_what;  // for the text report: "vertices", "% Hausdorff to ..."
+  if (args.match_vertices > 0 || !match_ref.empty() || args.match_envelope > 0) {
     VdbMatch m;
+    double target = 0;
     if (args.match_vertices > 0) {
       m = vdb_match_vertices(atoms, args.match_vertices, /*max_probes=*/5, primitives);
-    } else {
+      target = static_cast<double>(args.match_vertices);
+      j["match"] = "vertices";
+      matched_what = " vertices";
+    } else if (!match_ref.empty()) {
       const PolygonSoup ref = read_polygon_soup(match_ref);
       MeshDistanceOptions dopt;
       dopt.samples = args.samples;
       m = vdb_match_hausdorff(atoms, match_pct, ref, dopt, match_ref, /*max_probes=*/5, primitives);
+      target = match_pct;
+      j["match"] = "hausdorff_pct";
+      matched_what = " % Hausdorff to " + match_ref + " (of its diagonal)";
+    } else {
+      AtomsDistanceOptions dopt;
+      dopt.primitives = primitives;
+      dopt.samples = args.samples;
+      m = vdb_match_envelope(atoms, args.match_envelope, args.diagonal, dopt, /*max_probes=*/5);
+      target = args.match_envelope;
+      const double diagonal = args.diagonal > 0 ? args.diagonal : spheres_bbox_diagonal(atoms);
+      j["match"] = "envelope_hausdorff_pct";
+      j["diagonal"] = diagonal;
+      std::ostringstream w;
+      w << std::setprecision(6) << " % Hausdorff to G (of the diagonal " << diagonal << ", "
+        << (args.diagonal > 0 ? "given" : "the spheres' box") << ")";
+      matched_what = w.str();
     }
     for (const auto& p : m.probes)
       probes.push_back({{"voxel", p.voxel}, {"value", p.value}, {"vertices", p.vertices}});
     clamped = m.clamped;
+    out_of_reach = m.out_of_reach;
     opt.voxel = m.best.voxel;
-    j["match"] = args.match_vertices > 0 ? "vertices" : "hausdorff_pct";
-    j["target"] = args.match_vertices > 0 ? static_cast<double>(args.match_vertices) : match_pct;
+    j["target"] = target;
     j["matched"] = m.value;
     if (!match_ref.empty()) j["reference"] = match_ref;
   }
@@ -210,6 +243,7 @@ int run_vdb(const VdbArgs& args) {
   if (!probes.empty()) {
     j["probes"] = probes;
     j["clamped"] = clamped;
+    j["out_of_reach"] = out_of_reach;
   }
   std::ostringstream text;
   if (mesh.envelope)
@@ -222,7 +256,9 @@ int run_vdb(const VdbArgs& args) {
          << timing_text(t) << '\n';
   if (!probes.empty())
     text << "  voxel search: " << probes.size() << " probes, matched " << j["matched"].dump()
-         << " for a target of " << j["target"].dump() << (clamped ? " (voxel clamped)" : "")
+         << matched_what << " for a target of " << j["target"].dump()
+         << (clamped ? " (voxel clamped)" : "")
+         << (out_of_reach ? " (out of reach: the measure stopped following the voxel)" : "")
          << '\n';
   return write_result(b, mesh.mesh, t, std::move(j), text.str());
 }

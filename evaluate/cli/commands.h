@@ -133,7 +133,10 @@ struct VdbArgs {
   double voxel = 0;                          ///< model units; 0 = diagonal / 400
   std::size_t match_vertices = 0;            ///< search the voxel giving about N vertices
   std::vector<std::string> match_hausdorff;  ///< P REF: search the voxel giving P % Hausdorff
-  std::size_t samples = 0;                   ///< --match-hausdorff: samples per side
+  /// Search the voxel giving a two-sided Hausdorff distance to G of P % of `diagonal` (0: none)
+  double match_envelope = 0;
+  double diagonal = 0;      ///< --match-envelope's diagonal, model units; 0 = the spheres' box
+  std::size_t samples = 0;  ///< --match-hausdorff, --match-envelope: samples per side
   std::string primitives = "auto";  ///< auto | ma (the envelope's distance) | rt (the spheres)
 };
 CLI::App* add_vdb(CLI::App& app, VdbArgs& args);

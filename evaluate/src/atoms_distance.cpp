@@ -12,12 +12,20 @@ namespace mg::evaluate {
 AtomsDistance atoms_distance(const PolygonSoup& mesh, const MedialSurface& atoms,
                              const AtomsDistanceOptions& opt, const std::string& name) {
   validate(atoms);
-  const garbing::TargetShape shape = garbing::make_target_shape(atoms, opt.primitives, opt.cones);
+  AtomsDistance r =
+      atoms_distance(mesh, garbing::make_target_shape(atoms, opt.primitives, opt.cones), opt, name);
+  r.envelope = garbing::resolve(opt.primitives, atoms) == garbing::PrimitiveSet::envelope;
+  return r;
+}
+
+AtomsDistance atoms_distance(const PolygonSoup& mesh, const garbing::TargetShape& shape,
+                             const AtomsDistanceOptions& opt, const std::string& name) {
+  if (!shape.frame().is_world())
+    throw InvalidInput("atoms_distance: G must be in world coordinates");
   const TriangleIndex index(mesh, name);
   AtomsDistance r;
   r.cones = shape.cone_count();
   r.slabs = shape.slab_count();
-  r.envelope = garbing::resolve(opt.primitives, atoms) == garbing::PrimitiveSet::envelope;
   r.diagonal = bbox_diagonal(mesh.points);
   if (!(r.diagonal > 0)) throw InvalidInput(name + ": bounding-box diagonal is 0");
   std::size_t referenced = 0;

@@ -12,6 +12,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <array>
+#include <cmath>
 #include <exception>
 
 namespace mg::evaluate {
@@ -99,6 +100,9 @@ struct TriangleIndex::Impl {
   std::vector<CgalTriangle> cgal_triangles;  ///< the non-degenerate triangles
   std::vector<std::size_t> triangle_of;  ///< cgal_triangles[i] is triangles.corners[triangle_of[i]]
   Tree tree;
+  /// distances(): the previous closest point hints the next query when it lies within the
+  /// previous distance plus this much of it (twice the mean edge length, model units).
+  double hint_reach = 0;
 };
 
 TriangleIndex::TriangleIndex(const PolygonSoup& soup, const std::string& name)
@@ -119,6 +123,11 @@ TriangleIndex::TriangleIndex(const PolygonSoup& soup, const std::string& name)
   }
   if (m.cgal_triangles.empty())
     throw InvalidInput(name + ": no non-degenerate triangle to find closest points on");
+  double edges = 0;
+  for (const CgalTriangle& t : m.cgal_triangles)
+    edges += std::sqrt(squared(t[0], t[1])) + std::sqrt(squared(t[1], t[2])) +
+             std::sqrt(squared(t[2], t[0]));
+  m.hint_reach = 2 * edges / (3.0 * static_cast<double>(m.cgal_triangles.size()));
   m.tree.insert(m.cgal_triangles.cbegin(), m.cgal_triangles.cend());
   m.tree.build();
   m.tree.accelerate_distance_queries();  // built now: later queries are const and thread-safe
@@ -149,8 +158,13 @@ void TriangleIndex::distances(const Eigen::Vector3d* queries, std::size_t count,
   Tree::Point_and_primitive_id hint;
   for (std::size_t i = 0; i < count; ++i) {
     const Point q = detail::to_cgal_point<Kernel>(queries[i]);
-    hint = i == 0 ? m.tree.closest_point_and_primitive(q)
-                  : m.tree.closest_point_and_primitive(q, hint);
+    // CGAL searches within |q - hint| first: a far hint (queries in random order, as G's
+    // area-uniform samples in atoms_distance) visits much of the tree (measured: 10x slower on
+    // a 340k-triangle mesh), so a far one gives way to CGAL's k-d tree hint.
+    const double reach = i == 0 ? 0 : out[i - 1] + m.hint_reach;
+    hint = i > 0 && squared(q, hint.first) <= reach * reach
+               ? m.tree.closest_point_and_primitive(q, hint)
+               : m.tree.closest_point_and_primitive(q);
     out[i] = std::sqrt(CGAL::squared_distance(q, hint.first));
   }
 }

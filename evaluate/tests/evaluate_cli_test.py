@@ -169,6 +169,40 @@ class EvaluateCli(U.CliTestCase):
         self.assertAlmostEqual(j["matched"], 0.5, delta=0.05)
         self.assertEqual(j["match"], "hausdorff_pct")
 
+    def test_vdb_match_envelope(self):
+        capsule = self.write("capsule_env.ma", "2 1 0\nv 0 0 0 0.5\nv 2 0.1 -0.05 0.35\ne 0 1\n")
+        out = self.path("capsule_env.off")
+        # --samples 1: twice the vertices of each probe (raised), every vertex sampled.
+        j = run_json("vdb", capsule, "-o", out, "--match-envelope", "0.2", "--samples", "1")
+        for key in ("match", "target", "matched", "diagonal", "probes", "clamped",
+                    "out_of_reach", "voxel", "vertices"):
+            self.assertIn(key, j)
+        self.assertEqual(j["match"], "envelope_hausdorff_pct")
+        self.assertEqual(j["target"], 0.2)
+        self.assertEqual(j["primitives"], "ma")
+        self.assertLessEqual(len(j["probes"]), 5)
+        for p in j["probes"]:
+            self.assertEqual(set(p), {"voxel", "value", "vertices"})
+        if not j["clamped"]:
+            self.assertAlmostEqual(j["matched"], 0.2, delta=0.03)
+        best = [p for p in j["probes"] if p["value"] == j["matched"]]
+        self.assertEqual(len(best), 1)
+        self.assertEqual((j["voxel"], j["vertices"]), (best[0]["voxel"], best[0]["vertices"]))
+        # `evaluate atoms` on the mesh written measures the same distance.
+        a = run_json("atoms", out, capsule, "--diagonal", repr(j["diagonal"]), "--samples",
+                     str(2 * j["vertices"]))
+        self.assertAlmostEqual(a["hausdorff_pct"], j["matched"], delta=1e-6 * j["matched"])
+        # A diagonal twice as long: the same distance in model units is half the percentage.
+        j2 = run_json("vdb", capsule, "-o", out, "--match-envelope", "0.1", "--samples", "1",
+                      "--diagonal", repr(2 * j["diagonal"]))
+        self.assertEqual(j2["diagonal"], 2 * j["diagonal"])
+        self.assertAlmostEqual(j2["voxel"], j["voxel"], delta=1e-9 * j["voxel"])
+        self.assertAlmostEqual(j2["matched"], j["matched"] / 2, delta=1e-9 * j["matched"])
+        # The text report says what was matched.
+        r = run("vdb", capsule, "-o", out, "--match-envelope", "0.2", "--samples", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("% Hausdorff to G (of the diagonal", r.stdout)
+
     def test_vdb_same_file_at_one_and_two_threads(self):
         ring = self.write("ring.ma", "".join(
             "%r %r 0 0.3\n" % (math.cos(k * math.pi / 6), math.sin(k * math.pi / 6))
@@ -257,6 +291,23 @@ class EvaluateCli(U.CliTestCase):
         r = run("vdb", self.path("one.ma"), "-o", out, "--match-hausdorff", "x",
                 self.path("s1.off"))
         self.assert_refused(r, 2, "'x' is not a percentage", [out])
+        for bad, message in [("0", "--match-envelope: must be > 0, not 0"),
+                             ("-1", "--match-envelope: must be > 0, not -1"),
+                             ("nan", "--match-envelope: must be > 0, not nan"),
+                             ("x", "--match-envelope: 'x' is not a number")]:
+            r = run("vdb", self.path("one.ma"), "-o", out, "--match-envelope", bad)
+            self.assert_refused(r, 2, message, [out])
+        r = run("vdb", self.path("one.ma"), "-o", out, "--match-envelope", "0.5", "--voxel",
+                "0.1")
+        self.assert_refused(r, 2, "--voxel excludes --match-envelope", [out])
+        r = run("vdb", self.path("one.ma"), "-o", out, "--match-envelope", "0.5",
+                "--match-hausdorff", "0.5", self.path("s1.off"))
+        self.assert_refused(r, 2, "excludes --match-envelope", [out])
+        r = run("vdb", self.path("one.ma"), "-o", out, "--diagonal", "3")
+        self.assert_refused(r, 2, "--diagonal requires --match-envelope", [out])
+        r = run("vdb", self.path("one.ma"), "-o", out, "--match-envelope", "0.5", "--diagonal",
+                "-1")
+        self.assert_refused(r, 2, "--diagonal: must be >= 0", [out])
         r = run("vdb", self.path("one.ma"), "-o", out, "--voxel", "5")
         self.assert_refused(r, 2, "every sphere is under 1.5 voxels", [out])
         r = run("vdb", self.path("one.ma"), "-o", out, "--primitives", "cones")

@@ -1,5 +1,6 @@
 // The OpenVDB baseline of a medial mesh's envelope: G's signed distance sampled, then meshed.
 #include "core/errors.h"
+#include "evaluate/atoms_distance.h"
 #include "evaluate/mesh_checks.h"
 #include "evaluate/vdb_mesh.h"
 #include "garbing/frame.h"
@@ -10,6 +11,10 @@
 #include "test_util.h"
 
 #include <tbb/global_control.h>
+
+#include <algorithm>
+#include <limits>
+#include <utility>
 
 namespace ev = mg::evaluate;
 namespace gb = mg::garbing;
@@ -120,4 +125,130 @@ TEST(VdbEnvelope, RefusesGOutsideTheWorldFrameAndBadVoxels) {
   EXPECT_THROW(ev::vdb_mesh(local, {}), mg::InvalidInput);
   EXPECT_THROW(ev::vdb_mesh(capsule(), with_voxel(-1)), mg::InvalidInput);
   EXPECT_THROW(ev::vdb_mesh(capsule(), with_voxel(1e-12)), mg::InvalidInput);
+}
+
+namespace {
+
+/// H(mesh, G) in % of the atoms' spheres' diagonal, as `evaluate atoms` measures it; samples
+/// 0 = its default, else raised to twice the vertex count as the search does.
+double hausdorff_to_g_pct(const mg::PolygonSoup& soup, const mg::MedialSurface& atoms,
+                          const ev::AtomsDistanceOptions& search = {}) {
+  ev::AtomsDistanceOptions opt = search;
+  if (opt.samples > 0) opt.samples = std::max(opt.samples, 2 * soup.points.size());
+  const ev::AtomsDistance d = ev::atoms_distance(soup, atoms, opt, "vdb mesh");
+  return 100 * d.distance.hausdorff / ev::spheres_bbox_diagonal(atoms);
+}
+
+/// Few samples (twice the vertex count: every vertex and as many edge and face points) keep the
+/// searches' first probe, at the diagonal / 400, under a second.
+ev::AtomsDistanceOptions few_samples(gb::PrimitiveSet primitives = gb::PrimitiveSet::automatic) {
+  ev::AtomsDistanceOptions opt;
+  opt.primitives = primitives;
+  opt.samples = 1;
+  return opt;
+}
+
+/// The search's promise: within 15% of the target after at most 5 probes, or clamped.
+void expect_near_target(const ev::VdbMatch& m, double target) {
+  EXPECT_LE(m.probes.size(), 5u);
+  if (!m.clamped) {
+    EXPECT_NEAR(m.value, target, 0.15 * target);
+  }
+}
+
+}  // namespace
+
+TEST(VdbEnvelope, HausdorffToGShrinksWithTheVoxel) {
+  double previous = std::numeric_limits<double>::infinity();
+  for (double voxel : {0.08, 0.04, 0.02}) {
+    const double h =
+        hausdorff_to_g_pct(ev::vdb_mesh(one_face(), with_voxel(voxel)).mesh, one_face());
+    EXPECT_LT(h, previous) << "voxel " << voxel;
+    previous = h;
+  }
+}
+
+TEST(VdbEnvelope, VoxelSearchHitsAHausdorffDistanceToG) {
+  for (const auto& [atoms, target] : {std::pair{capsule(), 0.2}, std::pair{one_face(), 0.2}}) {
+    const ev::VdbMatch m = ev::vdb_match_envelope(atoms, target, 0, few_samples());
+    EXPECT_TRUE(m.best.envelope);
+    EXPECT_FALSE(m.out_of_reach);
+    expect_near_target(m, target);
+    // The value is `evaluate atoms`'s Hausdorff (same G, samples and seed), in % of the
+    // spheres' diagonal.
+    EXPECT_DOUBLE_EQ(m.value, hausdorff_to_g_pct(m.best.mesh, atoms, few_samples()));
+    ASSERT_FALSE(m.probes.empty());
+    EXPECT_DOUBLE_EQ(m.probes.front().voxel, ev::spheres_bbox_diagonal(atoms) / 400);
+  }
+}
+
+TEST(VdbEnvelope, VoxelSearchOnAGivenDiagonalScalesTheTarget) {
+  // Twice the diagonal, half the percentage: the same distance in model units.
+  const double diagonal = 2 * ev::spheres_bbox_diagonal(capsule());
+  const ev::VdbMatch m = ev::vdb_match_envelope(capsule(), 0.1, diagonal, few_samples());
+  expect_near_target(m, 0.1);
+  EXPECT_DOUBLE_EQ(m.value, hausdorff_to_g_pct(m.best.mesh, capsule(), few_samples()) / 2);
+}
+
+TEST(VdbEnvelope, VoxelSearchOnTheSpheresPathMeasuresBallsAndCones) {
+  // The capsule's balls are disjoint: G of the balls and cones is the two balls.
+  const ev::AtomsDistanceOptions opt = few_samples(gb::PrimitiveSet::atoms);
+  const ev::VdbMatch m = ev::vdb_match_envelope(capsule(), 0.2, 0, opt);
+  EXPECT_FALSE(m.best.envelope);
+  expect_near_target(m, 0.2);
+  EXPECT_DOUBLE_EQ(m.value, hausdorff_to_g_pct(m.best.mesh, capsule(), opt));
+}
+
+TEST(VdbEnvelope, VoxelSearchStopsAtTheConeTheSpheresNeverFill) {
+  // Two deeply overlapping balls: G of balls and cones has their cylinder, 0.032 outside the
+  // crease (0.26% of the diagonal, stretched by a far small ball); the spheres' mesh never
+  // fills it, so a target of 0.2% is out of reach.
+  mg::MedialSurface s;
+  s.atoms = {{Eigen::Vector3d(0, 0, 0), 1.0},
+             {Eigen::Vector3d(0.5, 0, 0), 1.0},
+             {Eigen::Vector3d(10, 0, 0), 0.1}};
+  ASSERT_EQ(gb::make_target_shape(s, gb::PrimitiveSet::atoms, {}).cone_count(), 1u);
+  const ev::VdbMatch m = ev::vdb_match_envelope(s, 0.2, 0, few_samples());
+  EXPECT_FALSE(m.best.envelope);
+  EXPECT_TRUE(m.out_of_reach);
+  EXPECT_FALSE(m.clamped);
+  EXPECT_EQ(m.probes.size(), 2u);
+  EXPECT_GT(m.value, 0.2 * 1.15);
+}
+
+TEST(VdbEnvelope, VoxelSearchReportsAClampedVoxel) {
+  // 20% is beyond the coarsest voxel, diagonal / 20: the search stops there and says so.
+  const ev::VdbMatch m = ev::vdb_match_envelope(capsule(), 20, 0, few_samples());
+  EXPECT_TRUE(m.clamped);
+  EXPECT_LE(m.probes.size(), 5u);
+  EXPECT_DOUBLE_EQ(m.best.voxel, ev::spheres_bbox_diagonal(capsule()) / 20);
+  EXPECT_LT(m.value, 20.0);
+}
+
+TEST(VdbEnvelope, VoxelSearchRefusesBadTargets) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double percent : {0.0, -1.0, nan, inf})
+    EXPECT_THROW(ev::vdb_match_envelope(capsule(), percent), mg::InvalidInput) << percent;
+  for (double diagonal : {-1.0, nan, inf})
+    EXPECT_THROW(ev::vdb_match_envelope(capsule(), 0.5, diagonal), mg::InvalidInput) << diagonal;
+  EXPECT_THROW(ev::vdb_match_envelope(capsule(), 0.5, 0, {}, /*max_probes=*/0), mg::InvalidInput);
+  EXPECT_THROW(ev::vdb_match_envelope(mg::MedialSurface{}, 0.5), mg::InvalidInput);
+}
+
+TEST(VdbEnvelope, AtomsDistanceOnAPrebuiltGIsTheSame) {
+  const ev::VdbMesh m = ev::vdb_mesh(one_face(), with_voxel(0.04));
+  const ev::AtomsDistanceOptions opt;
+  const ev::AtomsDistance built = ev::atoms_distance(m.mesh, one_face(), opt, "vdb");
+  const gb::TargetShape g = gb::make_target_shape(one_face(), gb::PrimitiveSet::envelope, {});
+  const ev::AtomsDistance given = ev::atoms_distance(m.mesh, g, opt, "vdb");
+  EXPECT_EQ(built.distance.hausdorff, given.distance.hausdorff);
+  EXPECT_EQ(built.distance.rms, given.distance.rms);
+  EXPECT_EQ(built.cones, given.cones);
+  EXPECT_EQ(built.slabs, given.slabs);
+  EXPECT_TRUE(built.envelope);
+  EXPECT_FALSE(given.envelope);  // G does not say what it was built from
+  const gb::TargetShape local = gb::make_target_shape(one_face(), gb::PrimitiveSet::envelope, {},
+                                                      gb::bounding_cube_frame(one_face()));
+  EXPECT_THROW(ev::atoms_distance(m.mesh, local, opt, "vdb"), mg::InvalidInput);
 }

@@ -38,4 +38,13 @@ struct AtomsDistance {
 AtomsDistance atoms_distance(const PolygonSoup& mesh, const MedialSurface& atoms,
                              const AtomsDistanceOptions& opt, const std::string& name);
 
+/// The same measure against a G built once by the caller (a search measuring many meshes
+/// against one G): only opt.samples and opt.seed are read; cones and slabs are the shape's
+/// counts, and `envelope` is false (a TargetShape does not record what it was built from: the
+/// overload above sets it).
+/// @pre mesh with positive area; shape in world coordinates (shape.frame().is_world())
+/// @throws InvalidInput naming `name`, or G's frame
+AtomsDistance atoms_distance(const PolygonSoup& mesh, const garbing::TargetShape& shape,
+                             const AtomsDistanceOptions& opt, const std::string& name);
+
 }  // namespace mg::evaluate

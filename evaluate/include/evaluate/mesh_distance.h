@@ -35,7 +35,9 @@ class TriangleIndex {
   /// @param[out] hits  count entries
   void closest_points(const Eigen::Vector3d* queries, std::size_t count, Hit* hits) const;
 
-  /// Unsigned distances of a batch of queries, model units (closest_points without the hits).
+  /// Unsigned distances of a batch of queries, model units (closest_points without the hits,
+  /// and the previous answer hints a query only when it lies within the previous distance plus
+  /// two mean edge lengths: random-order queries would otherwise search far).
   void distances(const Eigen::Vector3d* queries, std::size_t count, double* out) const;
 
   /// This index as a DistanceOracle (references *this: keep the index alive while it is used).

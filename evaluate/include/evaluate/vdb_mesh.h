@@ -5,10 +5,11 @@
 /// (OpenVDB's come out inward). The level set is the atoms' spheres rasterised
 /// (ParticlesToLevelSet, CSG union), or, for a medial mesh, the signed distance of its envelope
 /// G (balls, cones, slabs: target_shape.h) sampled at the voxels near G. Plus the voxel searches
-/// that match a vertex count or a Hausdorff distance.
+/// that match a vertex count, a Hausdorff distance to a reference mesh, or one to G itself.
 
 #include "core/medial_surface.h"
 #include "core/mesh.h"
+#include "evaluate/atoms_distance.h"
 #include "evaluate/mesh_distance.h"
 #include "garbing/target_shape.h"
 
@@ -64,7 +65,7 @@ VdbMesh vdb_mesh(const garbing::TargetShape& g, const VdbOptions& opt);
 /// One voxel size tried by a search.
 struct VdbProbe {
   double voxel = 0;  ///< model units
-  double value = 0;  ///< the matched quantity: vertices, or Hausdorff in %
+  double value = 0;  ///< the matched quantity: vertices, or a Hausdorff distance in %
   std::size_t vertices = 0;
 };
 
@@ -73,13 +74,17 @@ struct VdbMatch {
   double value = 0;              ///< its matched quantity
   std::vector<VdbProbe> probes;  ///< in the order tried
   bool clamped = false;          ///< a probe hit the voxel range [diag / 2000, diag / 20]
+  /// The search stopped early: a step of 25% or more in h left the measure (nearly) unmoved
+  /// on the same side of the target, a floor or ceiling out of the voxel's reach.
+  bool out_of_reach = false;
 };
 
 /// Searches the voxel size whose mesh has about `vertices` vertices: at most `max_probes`
 /// probes, stopping within 1%. Starts at the default voxel, then a safeguarded secant in
-/// log-log space (V ~ h^-2 until two probes give a slope; bisection in log h once the target
-/// is bracketed and the secant step leaves the bracket). `primitives` as VdbOptions's (an
-/// envelope's G is built once for all probes).
+/// log-log space (V ~ h^-2 until two probes give a slope; once the target is bracketed, the
+/// secant through the closest probe on either side, or bisection in log h when that nearly
+/// repeats one). Stops early, out_of_reach, when the measure does not follow the voxel.
+/// `primitives` as VdbOptions's (an envelope's G is built once for all probes).
 /// @pre vertices >= 1; 1 <= max_probes <= 20   @throws InvalidInput
 VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices, int max_probes = 5,
                             garbing::PrimitiveSet primitives = garbing::PrimitiveSet::automatic);
@@ -93,5 +98,21 @@ VdbMatch vdb_match_hausdorff(const MedialSurface& atoms, double percent,
                              const PolygonSoup& reference, const MeshDistanceOptions& distance,
                              const std::string& reference_name, int max_probes = 5,
                              garbing::PrimitiveSet primitives = garbing::PrimitiveSet::automatic);
+
+/// The same search for a two-sided Hausdorff distance between the mesh and G itself of
+/// `percent` % of `diagonal` (H ~ h to start), e.g. a garbing's distance to G from `evaluate
+/// atoms`: the voxel at which OpenVDB comes as close to G. What is meshed is distance.primitives
+/// (as VdbOptions's); G is what atoms_distance(mesh, atoms, distance) measures against: the
+/// envelope (one G, built once, both meshed and measured against), or on the spheres' path the
+/// balls and the cones distance.cones chooses (`evaluate atoms --primitives rt`; the mesh stays the
+/// spheres alone, so H stays above the cones' reach outside the balls, and a smaller target ends
+/// clamped). Distances as atoms_distance(mesh, G, distance) (samples 0 = max(1e5, 10 V_mesh); a
+/// non-zero count is raised to twice the mesh's vertex count when below it), G built once for all
+/// probes.
+/// @param diagonal  for the percentages, model units; 0 = spheres_bbox_diagonal(atoms), the
+///                  same at every probe (the mesh's own box changes with the voxel)
+/// @pre percent > 0; diagonal >= 0; both finite; 1 <= max_probes <= 20   @throws InvalidInput
+VdbMatch vdb_match_envelope(const MedialSurface& atoms, double percent, double diagonal = 0,
+                            const AtomsDistanceOptions& distance = {}, int max_probes = 5);
 
 }  // namespace mg::evaluate

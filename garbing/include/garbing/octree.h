@@ -45,7 +45,7 @@ struct OctreeCell {
   bool inside_one_hull = false;
   /// The cube holds no boundary of G: inside one ball or one hull.
   bool holds_no_boundary() const { return inside_one_ball || inside_one_hull; }
-  std::vector<int> spheres;      ///< Spheres(c): atoms whose closed ball meets the closed cube
+  std::vector<int> spheres;  ///< Spheres(c): atoms whose closed ball meets the closed cube
   /// Cones(c): the cones of G (index k: primitive id sphere_count + k) whose solid meets the
   /// closed cube where neither ball does (through the fill of the crease between the balls),
   /// sorted. A cone one of whose balls meets the cube is not listed: its ball stands for it in
