@@ -113,15 +113,9 @@ class EnvelopeSampler {
     bounds_.reserve(g.primitive_count());
     for (std::size_t i = 0; i < g.primitive_count(); ++i)
       bounds_.push_back(solid_bound(static_cast<garbing::PrimitiveId>(i)));
-    // A ball lies in each of its cones: the union and the distance outside it are the rest's
-    // (the depth inside stays a bound). Slabs are evaluated only where their stationary point
-    // may lie in their triangle (foot_may_be_inside): elsewhere their distance is their edge
-    // hulls', which are cones (or balls holding the other end) of G.
-    covered_.assign(g.primitive_count(), false);
-    for (std::size_t a = 0; a < g.sphere_count(); ++a) {
-      const auto cones = g.cones_of_atom(static_cast<int>(a));
-      covered_[a] = cones.first != cones.second;
-    }
+    // Slabs are evaluated only where their stationary point may lie in their triangle
+    // (foot_may_be_inside): elsewhere their distance is their edge hulls', which are cones (or
+    // balls holding the other end) of G.
   }
 
   /// The leaves with a voxel in the band, in a fixed order (blocks, then leaves, by x, y, z).
@@ -250,9 +244,24 @@ class EnvelopeSampler {
     const Eigen::AlignedBox3d box = grown_box(origin, kBlock, band_);
     std::vector<int> candidates;
     g_.primitives_meeting_box(box.min(), box.max(), candidates);
-    candidates.erase(
-        std::remove_if(candidates.begin(), candidates.end(), [&](int i) { return covered_[i]; }),
-        candidates.end());
+    // A ball lies in each of its cones: where one of them is a candidate too, the union and the
+    // distance outside it are the cone's (the depth inside stays a bound). A cone is found by
+    // its frustum's box, which leaves its balls' caps out: a block reached only by a cap keeps
+    // the ball.
+    std::vector<int> cone_atoms;
+    for (int i : candidates)
+      if (g_.is_cone(i)) {
+        cone_atoms.push_back(g_.cone(i).a);
+        cone_atoms.push_back(g_.cone(i).b);
+      }
+    std::sort(cone_atoms.begin(), cone_atoms.end());
+    candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                    [&](int i) {
+                                      return g_.is_sphere(i) &&
+                                             std::binary_search(cone_atoms.begin(),
+                                                                cone_atoms.end(), i);
+                                    }),
+                     candidates.end());
     LeafList leaves;
     sample_cube(origin, kBlock, candidates, leaves);
     return leaves;
@@ -402,7 +411,6 @@ class EnvelopeSampler {
   const garbing::TargetShape& g_;
   double voxel_, band_;
   std::vector<Bound> bounds_;  // per primitive
-  std::vector<bool> covered_;  // per primitive: a ball inside one of its cones
 };
 
 }  // namespace
