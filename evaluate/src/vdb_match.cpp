@@ -28,14 +28,20 @@ class VoxelSearch {
  public:
   /// @param envelope  G of the envelope (envelope_of), meshed at every probe; null: the spheres
   /// @param exponent  the model's d ln(measure) / d ln h before two probes give a slope
+  /// @param stop_when_stalled  stop as out_of_reach when the measure does not follow the voxel
+  ///        (the distance to G, which has a floor on the spheres' path); the vertex count and the
+  ///        distance to a reference go on probing: the latter is noisy and not monotone in h, and
+  ///        its matches in the reproduction's tables come from the full search
   VoxelSearch(const MedialSurface& atoms, const garbing::TargetShape* envelope, double target,
-              double exponent, std::function<double(const VdbMesh&)> measure, int max_probes)
+              double exponent, std::function<double(const VdbMesh&)> measure, int max_probes,
+              bool stop_when_stalled)
       : atoms_(atoms),
         envelope_(envelope),
         target_(target),
         exponent_(exponent),
         measure_(std::move(measure)),
-        max_probes_(max_probes) {
+        max_probes_(max_probes),
+        stop_when_stalled_(stop_when_stalled) {
     if (max_probes < 1 || max_probes > 20)
       throw InvalidInput("voxel search: probes must be in [1, 20], got " +
                          std::to_string(max_probes));
@@ -70,7 +76,7 @@ class VoxelSearch {
         result.value = value;
       }
       if (std::abs(value / target_ - 1) <= 0.01) break;
-      if (stalled()) {
+      if (stop_when_stalled_ && stalled()) {
         result.out_of_reach = true;
         break;
       }
@@ -126,6 +132,7 @@ class VoxelSearch {
   double target_, exponent_;
   std::function<double(const VdbMesh&)> measure_;
   int max_probes_;
+  bool stop_when_stalled_;
   double x_min_ = 0, x_max_ = 0;
   std::vector<double> xs_, ys_;
 };
@@ -138,7 +145,8 @@ VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices, in
   const auto envelope = envelope_of(atoms, primitives);
   return VoxelSearch(
              atoms, envelope.get(), static_cast<double>(vertices), /*exponent=*/-2.0,
-             [](const VdbMesh& m) { return static_cast<double>(m.mesh.points.size()); }, max_probes)
+             [](const VdbMesh& m) { return static_cast<double>(m.mesh.points.size()); }, max_probes,
+             /*stop_when_stalled=*/false)
       .run();
 }
 
@@ -163,7 +171,7 @@ VdbMatch vdb_match_hausdorff(const MedialSurface& atoms, double percent,
                    mesh_distance(m.mesh, reference, opt, "vdb mesh", reference_name);
                return percent_of_diagonal(d.distance.hausdorff, d.diagonal);
              },
-             max_probes)
+             max_probes, /*stop_when_stalled=*/false)
       .run();
 }
 
@@ -197,7 +205,7 @@ VdbMatch vdb_match_envelope(const MedialSurface& atoms, double percent, double d
                const AtomsDistance r = atoms_distance(m.mesh, g, opt, "vdb mesh");
                return percent_of_diagonal(r.distance.hausdorff, d);
              },
-             max_probes)
+             max_probes, /*stop_when_stalled=*/true)
       .run();
 }
 

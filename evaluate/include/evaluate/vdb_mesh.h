@@ -74,8 +74,9 @@ struct VdbMatch {
   double value = 0;              ///< its matched quantity
   std::vector<VdbProbe> probes;  ///< in the order tried
   bool clamped = false;          ///< a probe hit the voxel range [diag / 2000, diag / 20]
-  /// The search stopped early: a step of 25% or more in h left the measure (nearly) unmoved
-  /// on the same side of the target, a floor or ceiling out of the voxel's reach.
+  /// vdb_match_envelope only: the search stopped early, a step of 25% or more in h having left
+  /// the measure (nearly) unmoved on the same side of the target, a floor or ceiling out of
+  /// the voxel's reach.
   bool out_of_reach = false;
 };
 
@@ -83,8 +84,7 @@ struct VdbMatch {
 /// probes, stopping within 1%. Starts at the default voxel, then a safeguarded secant in
 /// log-log space (V ~ h^-2 until two probes give a slope; once the target is bracketed, the
 /// secant through the closest probe on either side, or bisection in log h when that nearly
-/// repeats one). Stops early, out_of_reach, when the measure does not follow the voxel.
-/// `primitives` as VdbOptions's (an envelope's G is built once for all probes).
+/// repeats one). `primitives` as VdbOptions's (an envelope's G is built once for all probes).
 /// @pre vertices >= 1; 1 <= max_probes <= 20   @throws InvalidInput
 VdbMatch vdb_match_vertices(const MedialSurface& atoms, std::size_t vertices, int max_probes = 5,
                             garbing::PrimitiveSet primitives = garbing::PrimitiveSet::automatic);
@@ -106,9 +106,10 @@ VdbMatch vdb_match_hausdorff(const MedialSurface& atoms, double percent,
 /// envelope (one G, built once, both meshed and measured against), or on the spheres' path the
 /// balls and the cones distance.cones chooses (`evaluate atoms --primitives rt`; the mesh stays the
 /// spheres alone, so H stays above the cones' reach outside the balls, and a smaller target ends
-/// clamped). Distances as atoms_distance(mesh, G, distance) (samples 0 = max(1e5, 10 V_mesh); a
-/// non-zero count is raised to twice the mesh's vertex count when below it), G built once for all
-/// probes.
+/// clamped or out_of_reach). Unlike the two searches above, it stops as out_of_reach when a step
+/// of 25% or more in h toward the target moves H less than a tenth of the model's prediction.
+/// Distances as atoms_distance(mesh, G, distance) (samples 0 = max(1e5, 10 V_mesh); a non-zero
+/// count is raised to twice the mesh's vertex count when below it), G built once for all probes.
 /// @param diagonal  for the percentages, model units; 0 = spheres_bbox_diagonal(atoms), the
 ///                  same at every probe (the mesh's own box changes with the voxel)
 /// @pre percent > 0; diagonal >= 0; both finite; 1 <= max_probes <= 20   @throws InvalidInput
