@@ -2,6 +2,7 @@
 #include "garbing/octree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace mg::garbing {
@@ -57,6 +58,10 @@ void touching_leaves(const Octree& tree, int c, std::vector<int>& out) {
   const OctreeCell& cell = tree.cells[c];
   const int n = cell.level;
   const std::int64_t size = std::int64_t(1) << n;
+  // The cell's ancestors by level, read once: each neighbour's common ancestor is one of them.
+  std::array<int, 64> ancestor;
+  ancestor[n] = c;
+  for (int l = n; l > 0; --l) ancestor[l - 1] = tree.cells[ancestor[l]].parent;
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
@@ -75,17 +80,18 @@ void touching_leaves(const Octree& tree, int c, std::vector<int>& out) {
           }
         }
         if (!inside) continue;
-        int anc = c;
-        for (int k = 0; k < climb; ++k) anc = tree.cells[anc].parent;
         // Descend from the common ancestor toward (n, nb).
-        int d = anc;
+        int d = ancestor[n - climb];
         while (!tree.cells[d].is_leaf() && tree.cells[d].level < n) {
           const int shift = n - tree.cells[d].level - 1;
           int k = 0;
           for (int a = 0; a < 3; ++a) k |= static_cast<int>((nb[a] >> shift) & 1) << a;
           d = tree.cells[d].first_child + k;
         }
-        leaves_facing(tree, d, offset, out);
+        if (tree.cells[d].is_leaf())
+          out.push_back(d);
+        else
+          leaves_facing(tree, d, offset, out);
       }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
