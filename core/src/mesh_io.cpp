@@ -4,6 +4,7 @@
 #include "core/errors.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -76,16 +77,26 @@ class OffParser {
   }
 
  private:
+  /// The next line with a word, split at white space (as a stream's >> splits) up to a '#'.
   bool next_line() {
-    std::string text;
-    while (std::getline(in_, text)) {
+    while (std::getline(in_, text_)) {
       ++line_;
-      const auto hash = text.find('#');
-      if (hash != std::string::npos) text.erase(hash);
-      std::istringstream words(text);
-      tokens_.clear();
-      for (std::string w; words >> w;) tokens_.push_back(w);
-      if (!tokens_.empty()) return true;
+      const auto hash = text_.find('#');
+      if (hash != std::string::npos) text_.erase(hash);
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < text_.size();) {
+        if (std::isspace(static_cast<unsigned char>(text_[i]))) {
+          ++i;
+          continue;
+        }
+        std::size_t j = i;
+        while (j < text_.size() && !std::isspace(static_cast<unsigned char>(text_[j]))) ++j;
+        if (n == tokens_.size()) tokens_.emplace_back();
+        tokens_[n++].assign(text_, i, j - i);
+        i = j;
+      }
+      tokens_.resize(n);
+      if (n > 0) return true;
     }
     return false;
   }
@@ -124,7 +135,8 @@ class OffParser {
   std::istream& in_;
   std::string name_;
   int line_ = 0;
-  std::vector<std::string> tokens_;
+  std::string text_;                 // the current line
+  std::vector<std::string> tokens_;  // its words (kept allocated from line to line)
 };
 
 // Writers: ASCII, 17 significant digits. (OpenMesh 9.0's writers go through single-precision
