@@ -178,8 +178,22 @@ TriangleDefects find_defects(const PolygonSoup& soup, const std::vector<int>* su
       return CGAL::coplanar(p, q, r, s) && CGAL::coplanar_orientation(p, q, r, s) == CGAL::POSITIVE;
     }
     // Sharing one vertex: they meet elsewhere iff an opposite edge meets the other triangle.
-    const Segment opposite_f(corner(f, (fa[0] + 1) % 3), corner(f, (fa[0] + 2) % 3));
-    const Segment opposite_g(corner(g, (gb[0] + 1) % 3), corner(g, (gb[0] + 2) % 3));
+    // When one triangle's two other corners lie strictly on one side of the other's plane, the
+    // triangle leaves that plane at the shared vertex: they meet there only (exact test first).
+    const Point& fp = corner(f, (fa[0] + 1) % 3);
+    const Point& fq = corner(f, (fa[0] + 2) % 3);
+    const Point& gp = corner(g, (gb[0] + 1) % 3);
+    const Point& gq = corner(g, (gb[0] + 2) % 3);
+    const Point& shared_point = corner(f, fa[0]);
+    auto one_side = [](const Point& p0, const Point& p1, const Point& p2, const Point& x,
+                       const Point& y) {
+      const CGAL::Orientation ox = CGAL::orientation(p0, p1, p2, x);
+      return ox != CGAL::COPLANAR && ox == CGAL::orientation(p0, p1, p2, y);
+    };
+    if (one_side(shared_point, fp, fq, gp, gq) || one_side(shared_point, gp, gq, fp, fq))
+      return false;
+    const Segment opposite_f(fp, fq);
+    const Segment opposite_g(gp, gq);
     return CGAL::do_intersect(opposite_f, tg) || CGAL::do_intersect(opposite_g, tf);
   };
 
