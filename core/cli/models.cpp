@@ -1,6 +1,6 @@
 // models: generate the project's analytic reference meshes and medial meshes, and report a
 // mesh's topology.
-//   models generate sphere|torus|bumpy-torus [shape options] -o MESH
+//   models generate sphere|torus|bumpy-torus|capsule [shape options] -o MESH
 //   models generate medial-capsule|medial-slab|medial-ring|medial-disc|medial-sheets|medial-hand
 //                   [--atoms N] [--hex-rings R] -o OUT.ma
 //   models info MESH [--json]
@@ -19,7 +19,7 @@
 
 namespace {
 
-const std::vector<std::string> kMeshShapes = {"sphere", "torus", "bumpy-torus"};
+const std::vector<std::string> kMeshShapes = {"sphere", "torus", "bumpy-torus", "capsule"};
 const std::vector<std::string> kMedialShapes = {"medial-capsule", "medial-slab",   "medial-ring",
                                                 "medial-disc",    "medial-sheets", "medial-hand"};
 
@@ -31,17 +31,19 @@ bool is_medial_shape(const std::string& shape) {
 struct GenerateArgs {
   std::string shape;  ///< one of kMeshShapes or kMedialShapes
   std::string output;
-  int frequency = 18;      ///< sphere: geodesic frequency (V = 10 f^2 + 2)
-  double radius = 1.0;     ///< sphere, model units
-  int ring = 60;           ///< torus: samples around the z axis
-  int tube = 20;           ///< torus: samples around the tube
-  double major = 1.0;      ///< torus: axis to tube centre
-  double minor = 0.3;      ///< torus: tube radius
-  double amplitude = 0.1;  ///< bumpy torus: relative bump height
-  int bumps_ring = 12;     ///< bumpy torus: bumps around the z axis
-  int bumps_tube = 6;      ///< bumpy torus: bumps around the tube
-  int atoms = 16;          ///< medial ring: atoms on the circle
-  int hex_rings = 3;       ///< medial disc: rings of atoms around the centre atom
+  int frequency = 18;        ///< sphere: geodesic frequency (V = 10 f^2 + 2)
+  double radius = 1.0;       ///< sphere, model units
+  int ring = 60;             ///< torus: samples around the z axis
+  int tube = 20;             ///< torus: samples around the tube
+  double major = 1.0;        ///< torus: axis to tube centre
+  double minor = 0.3;        ///< torus: tube radius
+  double amplitude = 0.1;    ///< bumpy torus: relative bump height
+  int bumps_ring = 12;       ///< bumpy torus: bumps around the z axis
+  int bumps_tube = 6;        ///< bumpy torus: bumps around the tube
+  int atoms = 16;            ///< medial ring: atoms on the circle
+  int hex_rings = 3;         ///< medial disc: rings of atoms around the centre atom
+  int rows = 8;              ///< capsule: rings per quarter circle of a cap
+  double half_length = 0.5;  ///< capsule: half the cylinder's length
 };
 
 CLI::App* add_generate(CLI::App& app, GenerateArgs& args) {
@@ -49,23 +51,27 @@ CLI::App* add_generate(CLI::App& app, GenerateArgs& args) {
       "generate", "write a generated closed triangle mesh, or a medial mesh (medial-*, .ma)");
   std::vector<std::string> shapes = kMeshShapes;
   shapes.insert(shapes.end(), kMedialShapes.begin(), kMedialShapes.end());
-  sub->add_option("shape", args.shape,
-                  "sphere | torus | bumpy-torus (meshes) | medial-capsule | medial-slab | "
-                  "medial-ring | medial-disc | medial-sheets | medial-hand (medial meshes)")
+  sub->add_option(
+         "shape", args.shape,
+         "sphere | torus | bumpy-torus | capsule (meshes) | medial-capsule | medial-slab | "
+         "medial-ring | medial-disc | medial-sheets | medial-hand (medial meshes)")
       ->required()
       ->check(CLI::IsMember(shapes));
   sub->add_option("-o,--output", args.output,
                   "output: a mesh (.off, .obj, .ply, .stl), or .ma for a medial mesh")
       ->required();
   sub->add_option("--frequency", args.frequency, "sphere: geodesic frequency f (V = 10 f^2 + 2)");
-  sub->add_option("--radius", args.radius, "sphere: radius, model units");
-  sub->add_option("--ring", args.ring, "torus: samples around the z axis");
+  sub->add_option("--radius", args.radius, "sphere, capsule: radius, model units");
+  sub->add_option("--ring", args.ring, "torus, capsule: samples around the z axis");
   sub->add_option("--tube", args.tube, "torus: samples around the tube");
   sub->add_option("--major", args.major, "torus: distance from the axis to the tube centre");
   sub->add_option("--minor", args.minor, "torus: tube radius");
   sub->add_option("--amplitude", args.amplitude, "bumpy torus: relative bump height");
   sub->add_option("--bumps-ring", args.bumps_ring, "bumpy torus: bumps around the z axis");
   sub->add_option("--bumps-tube", args.bumps_tube, "bumpy torus: bumps around the tube");
+  sub->add_option("--rows", args.rows, "capsule: rings per quarter circle of a cap");
+  sub->add_option("--half-length", args.half_length,
+                  "capsule: half the cylinder's length (along z), model units");
   sub->add_option("--atoms", args.atoms, "medial ring: atoms on the circle (>= 3)");
   sub->add_option("--hex-rings", args.hex_rings,
                   "medial disc: rings of atoms around the centre atom, 1-100 "
@@ -101,6 +107,8 @@ int run_generate(const GenerateArgs& args) {
     soup = mg::make_geodesic_sphere(args.frequency, args.radius);
   else if (args.shape == "torus")
     soup = mg::make_torus(args.ring, args.tube, args.major, args.minor);
+  else if (args.shape == "capsule")
+    soup = mg::make_capsule(args.ring, args.rows, args.half_length, args.radius);
   else
     soup = mg::make_bumpy_torus(args.ring, args.tube, args.major, args.minor, args.amplitude,
                                 args.bumps_ring, args.bumps_tube);

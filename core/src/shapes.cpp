@@ -154,6 +154,50 @@ PolygonSoup make_bumpy_torus(int ring, int tube, double major, double minor, dou
   });
 }
 
+PolygonSoup make_capsule(int ring, int rows, double half_length, double radius) {
+  if (ring < 3 || rows < 1) throw InvalidInput("capsule: need ring >= 3 and rows >= 1");
+  if (!(half_length >= 0 && radius > 0 && std::isfinite(half_length) && std::isfinite(radius)))
+    throw InvalidInput("capsule: need half_length >= 0 and radius > 0");
+  // The profile from the north pole to the south pole, as (z, distance to the axis), poles
+  // excluded.
+  std::vector<std::array<double, 2>> profile;
+  for (int k = 1; k <= rows; ++k) {
+    const double t = kPi / 2 * k / rows;
+    profile.push_back({half_length + radius * std::cos(t), radius * std::sin(t)});
+  }
+  const int bands =
+      std::max(1, static_cast<int>(std::lround(2 * half_length / (radius * kPi / 2 / rows))));
+  for (int j = 1; j < bands; ++j)
+    profile.push_back({half_length - 2 * half_length * j / bands, radius});
+  for (int k = rows; k >= 1; --k) {
+    const double t = kPi / 2 * k / rows;
+    profile.push_back({-half_length - radius * std::cos(t), radius * std::sin(t)});
+  }
+  PolygonSoup soup;
+  const int north = 0;
+  soup.points.emplace_back(0, 0, half_length + radius);
+  for (const auto& [z, rho] : profile)
+    for (int i = 0; i < ring; ++i) {
+      const double u = 2 * kPi * i / ring;
+      soup.points.emplace_back(rho * std::cos(u), rho * std::sin(u), z);
+    }
+  const int south = static_cast<int>(soup.points.size());
+  soup.points.emplace_back(0, 0, -half_length - radius);
+  const int rings = static_cast<int>(profile.size());
+  auto id = [&](int r, int i) { return 1 + r * ring + (i % ring); };
+  // u grows counter-clockwise about z and the profile runs downward: (du, d(profile)) is
+  // left-handed with the outward normal, so each triangle lists the lower ring first.
+  for (int i = 0; i < ring; ++i) soup.faces.push_back({north, id(0, i), id(0, i + 1)});
+  for (int r = 0; r + 1 < rings; ++r)
+    for (int i = 0; i < ring; ++i) {
+      soup.faces.push_back({id(r, i), id(r + 1, i), id(r + 1, i + 1)});
+      soup.faces.push_back({id(r, i), id(r + 1, i + 1), id(r, i + 1)});
+    }
+  for (int i = 0; i < ring; ++i)
+    soup.faces.push_back({south, id(rings - 1, i + 1), id(rings - 1, i)});
+  return soup;
+}
+
 PolygonSoup make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   if (!(lo.array() < hi.array()).all()) throw InvalidInput("box: need lo < hi componentwise");
   PolygonSoup soup;

@@ -26,6 +26,13 @@ PolygonSoup make_torus(int ring, int tube, double major, double minor);
 PolygonSoup make_bumpy_torus(int ring, int tube, double major, double minor, double amplitude,
                              int bumps_ring, int bumps_tube);
 
+/// Capsule along the z axis: a cylinder of `radius` from z = -half_length to half_length closed
+/// by two hemispherical caps (a surface of revolution, vertices exactly on it). `ring` samples
+/// around the axis, `rows` rings per quarter circle of a cap, the cylinder's rings spaced as the
+/// caps' (at least one band). Triangles; the poles are fans.
+/// @pre ring >= 3, rows >= 1, half_length >= 0, radius > 0   @throws InvalidInput
+PolygonSoup make_capsule(int ring, int rows, double half_length, double radius);
+
 /// Axis-aligned box [lo, hi] as 6 quads.   @pre lo < hi componentwise
 PolygonSoup make_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
 
