@@ -53,6 +53,56 @@ class BallTree {
         visit);
   }
 
+  /// max over the balls j of r_j - |p - c_j|, starting from the lower bound `at_least` (-inf
+  /// when none is known): how deep p lies in the deepest ball (negative: outside every ball, by at
+  /// most its magnitude). The answer is exact; a good `at_least` only prunes more. `which`, if
+  /// given, receives the ball attaining it (the smallest index among ties; untouched when none
+  /// beats `at_least`).
+  double deepest(const Vec3& p, double at_least = -INFINITY, int* which = nullptr) const {
+    if (nodes_.empty()) return at_least;
+    double best = at_least;
+    auto bound = [&](const Node& n) {
+      // Every ball of the node lies in its bounding sphere and has its centre in its box.
+      return std::min(n.max_radius - std::sqrt(n.box.squaredExteriorDistance(p)),
+                      n.sphere_radius - (p - n.sphere_centre).norm());
+    };
+    int stack[128];
+    double stack_bound[128];
+    int top = 0;
+    stack[top] = 0;
+    stack_bound[top++] = bound(nodes_[0]);
+    while (top > 0) {
+      --top;
+      if (stack_bound[top] <= best) continue;
+      const Node& n = nodes_[stack[top]];
+      if (n.left < 0) {
+        for (int k = n.begin; k < n.end; ++k) {
+          const MedialAtom& b = balls_[index_[k]];
+          const double d = b.radius - (p - b.centre).norm();
+          if (d > best || (which && d == best && index_[k] < *which)) {
+            best = d;
+            if (which) *which = index_[k];
+          }
+        }
+        continue;
+      }
+      const double bl = bound(nodes_[n.left]), br = bound(nodes_[n.right]);
+      // The more promising child on top.
+      if (bl >= br) {
+        stack[top] = n.right;
+        stack_bound[top++] = br;
+        stack[top] = n.left;
+        stack_bound[top++] = bl;
+      } else {
+        stack[top] = n.left;
+        stack_bound[top++] = bl;
+        stack[top] = n.right;
+        stack_bound[top++] = br;
+      }
+    }
+    return best;
+  }
+
  private:
   struct Node {
     Eigen::AlignedBox3d box;

@@ -406,6 +406,15 @@ class Skeletonizer {
       if (keep_edge[i]) out_.atoms.edges.push_back(rs.edges[i]);
     for (std::size_t i = 0; i < rs.triangles.size(); ++i)
       if (keep_triangle[i]) out_.atoms.faces.push_back(rs.triangles[i]);
+    // Cells: the tetrahedra whose four triangles were kept (the kept faces are sorted).
+    const auto& kept = out_.atoms.faces;
+    auto has = [&](int x, int y, int z) {
+      return std::binary_search(kept.begin(), kept.end(), std::array<int, 3>{x, y, z});
+    };
+    for (const auto& c : rs.tetrahedra)
+      if (has(c[0], c[1], c[2]) && has(c[0], c[1], c[3]) && has(c[0], c[2], c[3]) &&
+          has(c[1], c[2], c[3]))
+        out_.cells.push_back(c);
   }
 
   void finish() {

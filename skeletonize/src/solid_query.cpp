@@ -64,6 +64,15 @@ double SolidQuery::distance(const Vec3& p, const Vec3& hint) const {
   return std::sqrt(impl_->tree->squared_distance(to_point(p), to_point(hint)));
 }
 
+Vec3 SolidQuery::closest_point(const Vec3& p) const {
+  const Point q = impl_->tree->closest_point(to_point(p));
+  return {q.x(), q.y(), q.z()};
+}
+
+int SolidQuery::closest_triangle(const Vec3& p) const {
+  return static_cast<int>(impl_->tree->closest_point_and_primitive(to_point(p)).second.idx());
+}
+
 bool SolidQuery::segment_inside(const Vec3& a, const Vec3& b) const {
   return !impl_->tree->do_intersect(K::Segment_3(to_point(a), to_point(b))) &&
          contains((a + b) / 2);

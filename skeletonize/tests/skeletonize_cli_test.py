@@ -135,6 +135,71 @@ class SkeletonizeCli(U.CliTestCase):
         self.assert_refused(run(mesh, "-o", out, "--stats", out), 2, "--stats names the output file", [mesh])
         self.assert_refused(run(mesh, "-o", os.path.join(self.dir, "no", "out.ma")), 2, "does not exist", [mesh])
 
+    def test_simplify_writes_a_medial_mesh_and_its_stats(self):
+        mesh = self.generate("torus.off", "torus")
+        r = run(mesh, "-o", self.path("out.ma"), "--clamp-radius", "--simplify", "20",
+                "--stats", self.path("s.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stderr, "")
+        (v, e, f), lines = self.read_ma("out.ma")
+        self.assertEqual(v, 20)
+        edges = {tuple(sorted(int(x) for x in l[1:3])) for l in lines if l[0] == "e"}
+        self.assertEqual(len(edges), e)
+        for l in lines:
+            if l[0] == "f":
+                a, b, c = sorted(int(x) for x in l[1:4])
+                self.assertTrue({(a, b), (a, c), (b, c)} <= edges, l)
+            if l[0] == "v":
+                self.assertGreater(float(l[4]), 0)
+        s = self.stats("s.json")["simplify"]
+        self.assertEqual(s["before"]["atoms"], 60)
+        self.assertEqual(s["after"], {"atoms": 20, "edges": e, "faces": f, "cells": s["after"]["cells"]})
+        self.assertTrue(s["target_reached"])
+        self.assertEqual(s["collapses"], 40)
+        self.assertEqual(s["complex"]["components_after"], 1)
+        self.assertEqual(s["complex"]["euler_after"], 0)
+        # Every sample of the torus lies within 1 % of the diagonal of the envelope.
+        self.assertLess(s["samples_to_envelope"]["max_pct"], 1.0)
+        for phase in ("setup", "prune", "quadrics", "collapse", "output"):
+            self.assertGreaterEqual(s["seconds"][phase], 0)
+
+    def test_simplify_percentage_and_unreachable_target(self):
+        mesh = self.generate("torus.off", "torus")
+        r = run(mesh, "-o", self.path("p.ma"), "--clamp-radius", "--simplify", "50%")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.read_ma("p.ma")[0][0], 30)
+        # One atom cannot hold the torus's loop: the collapses stop above it, with a warning.
+        r = run(mesh, "-o", self.path("one.ma"), "--clamp-radius", "--simplify", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("warning", r.stderr)
+        self.assertIn("above the target of 1", r.stderr)
+        self.assertGreaterEqual(self.read_ma("one.ma")[0][0], 3)
+
+    def test_simplify_same_file_at_one_and_two_threads(self):
+        mesh = self.generate("bumpy.off", "bumpy-torus", "--ring", "60", "--tube", "40")
+        for threads in ("1", "2"):
+            r = run(mesh, "-o", self.path("t%s.ma" % threads), "--simplify", "2%",
+                    "--threads", threads)
+            self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.load("t1.ma"), self.load("t2.ma"))
+
+    def test_simplify_bad_targets(self):
+        mesh = self.generate("torus.off", "torus")
+        out = self.path("out.ma")
+        self.assert_refused(run(mesh, "-o", out, "--simplify", "0"), 2,
+                            "--simplify: must be >= 1 atom, not 0", [mesh])
+        self.assert_refused(run(mesh, "-o", out, "--simplify", "61"), 2,
+                            "--simplify 61: more than the skeleton's 60 atoms (poles) of " + mesh,
+                            [mesh])
+        self.assert_refused(run(mesh, "-o", out, "--simplify", "many"), 2,
+                            "--simplify: expected a count of atoms or a percentage, got 'many'", [mesh])
+        self.assert_refused(run(mesh, "-o", out, "--simplify", "0%"), 2,
+                            "--simplify: a percentage must be in (0, 100], not 0%", [mesh])
+        self.assert_refused(run(mesh, "-o", out, "--simplify", "120%"), 2,
+                            "a percentage must be in (0, 100]", [mesh])
+        self.assert_refused(run(mesh, "-o", out, "--max-excess", "0"), 2, "need --simplify", [mesh])
+        self.assert_refused(run(mesh, "-o", out, "--slab-planes"), 2, "need --simplify", [mesh])
+
     def test_tetrahedron(self):
         # Its one circumcentre lies outside it; with the edge midpoints it has one pole.
         mesh = self.write("tet.off", TETRA)

@@ -8,6 +8,7 @@
 #include "core/mesh.h"
 #include "skeletonize/solid_query.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -64,6 +65,10 @@ struct Skeleton {
   MedialSurface atoms;
   std::vector<Eigen::Vector3d> samples;  ///< the samples used, model units
   std::vector<int> atom_of_sample;       ///< the atom each sample's pole became; -1: none
+  /// With opt.connectivity: the regular triangulation's tetrahedra whose four triangles are all
+  /// kept (inside the object), sorted (i < j < k < l). Not written to `.ma` files; they fill the
+  /// complex the simplification (simplify.h) works on.
+  std::vector<std::array<int, 4>> cells;
   SkeletonStats stats;
 };
 

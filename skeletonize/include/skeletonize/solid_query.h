@@ -27,6 +27,10 @@ class SolidQuery {
   double distance(const Eigen::Vector3d& p) const;
   /// The same, starting the search from `hint`, a point on the mesh (a sample) near the answer.
   double distance(const Eigen::Vector3d& p, const Eigen::Vector3d& hint) const;
+  /// The closest point of the mesh to p.
+  Eigen::Vector3d closest_point(const Eigen::Vector3d& p) const;
+  /// The triangle closest to p: its index in fan_triangles(mesh) (ties: the tree's first).
+  int closest_triangle(const Eigen::Vector3d& p) const;
   /// Segment [a, b] meets no mesh face and its midpoint is inside.
   bool segment_inside(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
   /// Triangle (a, b, c) meets no mesh face and its centroid is inside.

@@ -31,11 +31,27 @@ struct UnionTopology {
 ///       predicates), 0.2 s once clamped
 UnionTopology union_topology(const MedialSurface& atoms);
 
+/// The dual complex of the union of the balls (the weighted alpha complex at alpha = 0 of the
+/// regular triangulation), homotopy equivalent to the union: an edge joins two balls that meet
+/// on their common power face, a triangle three with a common point on their power edge, a
+/// tetrahedron four with their power vertex in all four. Coplanar centres: the planar complex;
+/// collinear ones: each run of overlapping intervals as a path of edges.
+struct UnionComplex {
+  std::vector<std::array<int, 2>> edges;       ///< sorted, i < j
+  std::vector<std::array<int, 3>> triangles;   ///< sorted, i < j < k
+  std::vector<std::array<int, 4>> tetrahedra;  ///< sorted, i < j < k < l
+  UnionTopology topology;                      ///< what union_topology() returns
+};
+
+/// @pre atoms valid   @throws InvalidInput
+UnionComplex union_complex(const MedialSurface& atoms);
+
 /// The simplices of the regular triangulation of the atoms (weights r^2), as atom indices:
 /// what `skeletonize --connectivity` filters. Hidden atoms have no simplex.
 struct RegularSimplices {
-  std::vector<std::array<int, 2>> edges;      ///< sorted, i < j
-  std::vector<std::array<int, 3>> triangles;  ///< sorted, i < j < k
+  std::vector<std::array<int, 2>> edges;       ///< sorted, i < j
+  std::vector<std::array<int, 3>> triangles;   ///< sorted, i < j < k
+  std::vector<std::array<int, 4>> tetrahedra;  ///< sorted, i < j < k < l (none unless 3D)
   std::size_t hidden_atoms = 0;
 };
 
