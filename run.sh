@@ -8,3 +8,4 @@ mg_build
 "$MG_PYTHON" experiments/models.py --build "$MG_BUILD_DIR" --write-results --quiet
 "$MG_PYTHON" experiments/reproduce.py --build "$MG_BUILD_DIR" "$@"
 "$MG_PYTHON" experiments/medial_meshes.py --build "$MG_BUILD_DIR" "$@"
+"$MG_PYTHON" experiments/simplify.py --build "$MG_BUILD_DIR" "$@"

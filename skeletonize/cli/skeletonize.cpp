@@ -254,8 +254,8 @@ int skeletonize_main(int argc, char** argv) {
   app.add_flag("--no-stability", no_stability,
                "with --simplify: cost = quadric error alone (no stability ratio)");
   app.add_option("--max-excess", sopt.max_excess,
-                 "with --simplify: no hull may stick out of the union of the poles' balls by more "
-                 "than F of D (0: no bound)")
+                 "with --simplify: no hull of a merged atom may stick out of the object by more "
+                 "than F of D, or than its poles did (0: no bound)")
       ->check(mg::NonNegative);
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(mg::NonNegative);

@@ -3,7 +3,7 @@
 /// Compact medial meshes: edge collapses ordered by Q-MAT's spherical quadric error (Li et al.,
 /// ACM TOG 2015) times its stability ratio, each merged atom placed at its quadric's minimiser,
 /// under the link condition (the complex keeps its homotopy type) and a bound on how far the
-/// hulls of the merged atom's simplices may leave the union of the input balls. See
+/// hulls of the merged atom's simplices may stick out of the object. See
 /// docs/algorithm.md "Simplification".
 
 #include "core/medial_surface.h"
@@ -32,10 +32,11 @@ struct SimplifyOptions {
   /// three with a common point, cells of four), which is homotopy equivalent to the union.
   bool union_complex = true;
   /// tau, as a fraction of D: no collapse may leave a hull of the merged atom's star (its ball,
-  /// the cones of its edges, the slabs of its triangles) sticking out of the union of the input
-  /// balls by more than tau (estimated at sample points of each hull, below); and before the
-  /// collapses, the simplices whose hulls stick out by more than tau are removed by elementary
-  /// collapses where a free face allows. 0: neither (pure Q-MAT).
+  /// the cones of its edges, the slabs of its triangles) sticking out of the object by more
+  /// than tau, or than the input atoms merged into it stuck out when that is more (estimated at
+  /// interpolated balls of each hull: r - the distance from the centre to the object); and
+  /// before the collapses, the simplices whose hulls stick out by more than tau are removed by
+  /// elementary collapses where a free face allows. 0: neither (pure Q-MAT).
   double max_excess = 5e-3;
   /// true: each atom's quadric is built from the object's own face planes, each face's plane
   /// shared among the atoms of the samples on it (needs the samples); false: from the tangent
