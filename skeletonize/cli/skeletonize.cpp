@@ -113,6 +113,7 @@ nlohmann::ordered_json simplify_json(const mg::skeletonize::SimplifyStats& s, st
   j["stability"] = opt.stability;
   j["stability_weight"] = opt.stability_weight;
   j["max_excess"] = opt.max_excess;
+  j["max_shortfall"] = opt.max_shortfall;
   j["before"] = {{"atoms", s.atoms_before},
                  {"edges", s.edges_before},
                  {"faces", s.faces_before},
@@ -133,7 +134,8 @@ nlohmann::ordered_json simplify_json(const mg::skeletonize::SimplifyStats& s, st
   j["contracted_loops"] = s.contracted_loops;
   j["refusals"] = {{"topology", s.refused_topology},
                    {"outside", s.refused_outside},
-                   {"excess", s.refused_excess}};
+                   {"excess", s.refused_excess},
+                   {"shortfall", s.refused_shortfall}};
   j["placements"] = {{"minimiser", s.placed_minimiser},
                      {"nearest_minimiser", s.placed_nearest_minimiser},
                      {"fallback", s.placed_fallback}};
@@ -257,6 +259,10 @@ int skeletonize_main(int argc, char** argv) {
                  "with --simplify: no hull of a merged atom may stick out of the object by more "
                  "than F of D, or than its poles did (0: no bound)")
       ->check(mg::NonNegative);
+  app.add_option("--max-shortfall", sopt.max_shortfall,
+                 "with --simplify: no sample of a merged atom may lie farther than F of D outside "
+                 "its star's balls, cones and slabs (0: no bound)")
+      ->check(mg::NonNegative);
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(mg::NonNegative);
   mg::parse_command_line(app, argc, argv);
@@ -267,10 +273,10 @@ int skeletonize_main(int argc, char** argv) {
     target = parse_simplify(simplify);
     opt.connectivity = true;
   } else if (no_stability || all_simplices || slab_planes || app.count("--stability-weight") ||
-             app.count("--max-excess")) {
+             app.count("--max-excess") || app.count("--max-shortfall")) {
     throw mg::InvalidInput(
-        "--stability-weight, --no-stability, --max-excess, --all-simplices and --slab-planes need "
-        "--simplify");
+        "--stability-weight, --no-stability, --max-excess, --max-shortfall, --all-simplices and "
+        "--slab-planes need --simplify");
   }
   sopt.stability = !no_stability;
   sopt.surface_planes = !slab_planes;

@@ -8,6 +8,8 @@
 #include "ball_tree.h"
 #include "core/errors.h"
 #include "core/timer.h"
+#include "garbing/primitives.h"
+#include "garbing/slab.h"
 #include "medial_complex.h"
 #include "samples.h"
 #include "skeletonize/solid_query.h"
@@ -157,6 +159,10 @@ struct Corner {
   double depth;
 };
 
+/// The collapses' bounds on the excess and the shortfall rise from 1 / kBoundSteps of
+/// SimplifyOptions' to theirs, doubling.
+constexpr double kBoundSteps = 8;
+
 struct Candidate {
   double cost;
   int a, b;  // a < b
@@ -251,6 +257,9 @@ class Simplifier {
     if (!(opt_.stability_weight >= 0 && std::isfinite(opt_.stability_weight)))
       throw InvalidInput("stability weight must be finite and >= 0, got " +
                          std::to_string(opt_.stability_weight));
+    if (!(opt_.max_shortfall >= 0 && std::isfinite(opt_.max_shortfall)))
+      throw InvalidInput("shortfall bound must be finite and >= 0, got " +
+                         std::to_string(opt_.max_shortfall));
     if (!(opt_.max_excess >= 0 && std::isfinite(opt_.max_excess)))
       throw InvalidInput("hull excess bound must be finite and >= 0, got " +
                          std::to_string(opt_.max_excess));
@@ -315,6 +324,10 @@ class Simplifier {
 
     s.diagonal = bbox_diagonal(object_.points);
     tau_ = opt_.max_excess * s.diagonal;
+    delta_ = samples_.empty() ? 0 : opt_.max_shortfall * s.diagonal;
+    samples_of_.assign(n, {});
+    for (std::size_t k = 0; k < atom_of_sample_.size(); ++k)
+      if (atom_of_sample_[k] >= 0) samples_of_[atom_of_sample_[k]].push_back(static_cast<int>(k));
     k_ = opt_.stability_weight * std::pow(s.diagonal, 4);
     solid_ = std::make_unique<SolidQuery>(object_);
     anchor_.resize(n);
@@ -325,6 +338,10 @@ class Simplifier {
       depth_[i] = (atoms[i].centre - anchor_[i]).norm();
       overshoot_[i] = std::max(0.0, atoms[i].radius - depth_[i]);
     });
+
+    inscribed_balls_.resize(n);
+    for (int i = 0; i < n; ++i) inscribed_balls_[i] = {atoms[i].centre, depth_[i]};
+    inscribed_ = std::make_unique<detail::BallTree>(inscribed_balls_);
 
     // Components of the complex whose balls meet (hidden atoms of the regular triangulation,
     // balls nearly inside another): joined by the edge of deepest overlap between them,
@@ -405,6 +422,9 @@ class Simplifier {
       for (std::size_t j = i + 1; j < N; ++j)
         lower = std::max(
             lower, pair_depth(y, c[i].sphere->centre, c[i].depth, c[j].sphere->centre, c[j].depth));
+    if (r - lower <= over) return r - lower;
+    // Tighter still: the depth in the union of every input atom's inscribed ball.
+    lower = inscribed_->deepest(y, lower);
     if (r - lower <= over) return r - lower;
     return r - solid_->distance(y, *c[nearest].anchor);
   }
@@ -787,6 +807,58 @@ class Simplifier {
     return worst;
   }
 
+  /// The largest distance from the samples of a and b to the solid of the star the collapse of
+  /// {a, b} into m would leave (m's ball, its cones and slabs) and the neighbours' balls; stops
+  /// once over `over`. A sample inside counts 0. An upper bound on each sample's distance to
+  /// the whole envelope.
+  double star_shortfall(int a, int b, const MedialAtom& m, double over) const {
+    if (samples_of_[a].empty() && samples_of_[b].empty()) return 0;
+    std::vector<MedialAtom> balls = {m};
+    std::vector<garbing::Cone> cones;
+    std::vector<garbing::Slab> slabs;
+    auto add_hull = [&](const MedialAtom& u) {
+      const double length = (u.centre - m.centre).norm();
+      if (length > std::abs(u.radius - m.radius))
+        cones.push_back(garbing::make_cone(m, u, 0, 1));
+      else if (u.radius > m.radius)
+        balls.push_back(u);
+    };
+    std::vector<int> seen;
+    for (int side : {a, b})
+      for (int u : complex_->neighbours(side)) {
+        if (u == a || u == b || std::find(seen.begin(), seen.end(), u) != seen.end()) continue;
+        seen.push_back(u);
+        balls.push_back(spheres_[u]);
+        add_hull(spheres_[u]);
+      }
+    for (int side : {a, b})
+      for (const Pair& p : complex_->triangle_links(side)) {
+        if (p[0] == a || p[0] == b || p[1] == a || p[1] == b) continue;
+        const MedialAtom &u = spheres_[p[0]], &w = spheres_[p[1]];
+        if (!garbing::collinear_centres(m, u, w))
+          slabs.push_back(garbing::make_slab(m, u, w, 0, 1, 2));
+      }
+    double worst = 0;
+    for (int side : {a, b})
+      for (int k : samples_of_[side]) {
+        const Vec3& s = samples_[k];
+        double d = INFINITY;
+        for (const MedialAtom& ball : balls)
+          d = std::min(d, (s - ball.centre).norm() - ball.radius);
+        for (const garbing::Cone& cone : cones) {
+          if (d <= worst) break;
+          d = std::min(d, garbing::hull_distance(cone, s));
+        }
+        for (const garbing::Slab& slab : slabs) {
+          if (d <= worst) break;
+          d = std::min(d, garbing::slab_distance(slab, s));
+        }
+        worst = std::max(worst, d);
+        if (worst > over) return worst;
+      }
+    return worst;
+  }
+
   /// Whether the point lies inside the object: certified by a vertex's ball of radius depth
   /// (inside the object) holding it, else CGAL's inside test.
   bool inside(const Vec3& p, int a, int b) const {
@@ -810,12 +882,38 @@ class Simplifier {
     long round_collapses = 0;
     push_all();
     st.rounds = 1;
+    // The bounds start at 1 / kBoundSteps of tau and delta and double whenever a pass over
+    // the queue collapses nothing: the collapses that keep the envelope closest go first. A
+    // refused edge waits, with the scale its measured excess or shortfall needs, until a pass
+    // reaches that scale (a topology or outside refusal: the next pass); an edge whose atoms
+    // change meanwhile is pushed afresh.
+    double scale = 1.0 / kBoundSteps;
+    struct Refused {
+      Candidate candidate;
+      double needs;  // the scale at which to try again
+    };
+    std::vector<Refused> refused;
+    auto refuse = [&](const Candidate& c, double needs) { refused.push_back({c, needs}); };
     while (complex_->vertices() > target) {
       if (queue.empty()) {
-        if (round_collapses == 0) break;
+        if (round_collapses == 0) {
+          if (scale >= 1) break;
+          scale = std::min(1.0, 2 * scale);
+        }
         round_collapses = 0;
         ++st.rounds;
-        push_all();
+        std::vector<Refused> waiting;
+        for (const Refused& r : refused) {
+          const Candidate& c = r.candidate;
+          if (!complex_->alive(c.a) || !complex_->alive(c.b) || c.version_a != version_[c.a] ||
+              c.version_b != version_[c.b])
+            continue;
+          if (r.needs <= scale)
+            queue.push(evaluate(c.a, c.b, false));
+          else
+            waiting.push_back(r);
+        }
+        refused = std::move(waiting);
         continue;
       }
       const Candidate c = queue.top();
@@ -833,6 +931,7 @@ class Simplifier {
       });
       if (!keeps_tunnels) {
         ++st.refused_topology;
+        refuse(c, 0);
         continue;
       }
       MergedAtom m;
@@ -845,15 +944,26 @@ class Simplifier {
       }
       if (!inside(m.atom.centre, c.a, c.b)) {
         ++st.refused_outside;
+        refuse(c, 0);
         continue;
+      }
+      if (delta_ > 0) {
+        const double shortfall = star_shortfall(c.a, c.b, m.atom, scale * delta_);
+        if (shortfall > scale * delta_) {
+          ++st.refused_shortfall;
+          refuse(c, shortfall / delta_);
+          continue;
+        }
       }
       const Vec3 anchor = solid_->closest_point(m.atom.centre);
       const double depth = (m.atom.centre - anchor).norm();
       const double overshoot = std::max(overshoot_[c.a], overshoot_[c.b]);
       if (tau_ > 0) {
-        const double allowed = std::max(tau_, overshoot);
-        if (star_excess(c.a, c.b, {&m.atom, &anchor, depth}, allowed) > allowed) {
+        const double allowed = std::max(scale * tau_, overshoot);
+        const double excess = star_excess(c.a, c.b, {&m.atom, &anchor, depth}, allowed);
+        if (excess > allowed) {
           ++st.refused_excess;
+          refuse(c, excess / tau_);
           continue;
         }
       }
@@ -868,6 +978,9 @@ class Simplifier {
                                                      : st.placed_fallback) += 1;
       spheres_[c.a] = m.atom;
       quadric_[c.a] += quadric_[c.b];
+      samples_of_[c.a].insert(samples_of_[c.a].end(), samples_of_[c.b].begin(),
+                              samples_of_[c.b].end());
+      samples_of_[c.b] = {};
       anchor_[c.a] = anchor;
       depth_[c.a] = depth;
       overshoot_[c.a] = overshoot;
@@ -949,17 +1062,21 @@ class Simplifier {
   const std::vector<Vec3>& samples_;
   const std::vector<int>& atom_of_sample_;
   SimplifiedMedialMesh out_;
-  double tau_ = 0, k_ = 0;
+  double tau_ = 0, k_ = 0, delta_ = 0;
   std::unique_ptr<SolidQuery> solid_;       // the object
   std::unique_ptr<detail::BallTree> tree_;  // over the input atoms
+  // The input atoms' inscribed balls (centre, distance to the object): inside the object.
+  std::vector<MedialAtom> inscribed_balls_;
+  std::unique_ptr<detail::BallTree> inscribed_;
   std::unique_ptr<detail::MedialComplex> complex_;
   // Per vertex (atom slot):
-  std::vector<MedialAtom> spheres_;     // its current sphere
-  std::vector<SphereQuadric> quadric_;  // its quadric
-  std::vector<std::uint32_t> version_;  // bumped when its sphere changes
-  std::vector<Vec3> anchor_;            // the mesh's point closest to its centre
-  std::vector<double> depth_;           // the distance from its centre to the mesh
-  std::vector<double> overshoot_;       // the largest r - depth of the input atoms merged into it
+  std::vector<MedialAtom> spheres_;           // its current sphere
+  std::vector<SphereQuadric> quadric_;        // its quadric
+  std::vector<std::vector<int>> samples_of_;  // the samples whose poles merged into it
+  std::vector<std::uint32_t> version_;        // bumped when its sphere changes
+  std::vector<Vec3> anchor_;                  // the mesh's point closest to its centre
+  std::vector<double> depth_;                 // the distance from its centre to the mesh
+  std::vector<double> overshoot_;  // the largest r - depth of the input atoms merged into it
   // The input complex's edges and triangles (sorted) and their estimated excesses.
   std::vector<Pair> edges0_;
   std::vector<Triple> triangles0_;

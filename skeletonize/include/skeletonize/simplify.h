@@ -36,8 +36,15 @@ struct SimplifyOptions {
   /// than tau, or than the input atoms merged into it stuck out when that is more (estimated at
   /// interpolated balls of each hull: r - the distance from the centre to the object); and
   /// before the collapses, the simplices whose hulls stick out by more than tau are removed by
-  /// elementary collapses where a free face allows. 0: neither (pure Q-MAT).
-  double max_excess = 5e-3;
+  /// elementary collapses where a free face allows. 0: neither (pure Q-MAT). The collapses'
+  /// bound rises from tau / 8 to tau, doubling when a pass over the queue collapses nothing
+  /// (likewise delta): the collapses that keep the envelope closest to the object go first.
+  double max_excess = 1.5e-2;
+  /// delta, as a fraction of D: no collapse may leave a sample of the merged atoms (the samples
+  /// whose poles merged into it) farther than delta outside the solid of its star (its ball,
+  /// cones and slabs, and its neighbours' balls): an upper bound on how far the envelope falls
+  /// short of the object there. Needs the samples; 0: no bound.
+  double max_shortfall = 1.5e-2;
   /// true: each atom's quadric is built from the object's own face planes, each face's plane
   /// shared among the atoms of the samples on it (needs the samples); false: from the tangent
   /// planes of the medial mesh's slabs and cones (Q-MAT).
@@ -72,6 +79,8 @@ struct SimplifyStats {
   std::size_t refused_topology = 0;
   std::size_t refused_outside = 0;  ///< the merged atom's centre would leave the object
   std::size_t refused_excess = 0;   ///< a hull of the merged star would stick out by more than tau
+  /// a sample of the merged atoms would lie farther than delta outside the merged star
+  std::size_t refused_shortfall = 0;
   /// How the merged atoms were placed (sphere_quadric.h's Placement), over the collapses done.
   std::size_t placed_minimiser = 0, placed_nearest_minimiser = 0, placed_fallback = 0;
   /// Merged atoms whose radius was clamped (no deeper overshoot of the object than the input
