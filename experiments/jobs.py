@@ -52,10 +52,12 @@ def atom_samples(vertices):
 
 
 def garb_and_measure(R, name, original, atoms, tag):
-    """garb + distances to the original and to G; returns a row of numbers."""
+    """garb (with --check-topology: M2 against the union of the balls, in its stats) + distances
+    to the original and to G; returns a row of numbers."""
     m2 = R.path(name, tag + "_m2.off")
     g = R.run_stats("garb", atoms, "-o", m2, "--m1", R.path(name, tag + "_m1.off"),
-                    stats=R.path(name, tag + "_garb.json"), label="%s garb %s" % (name, tag))
+                    "--check-topology", stats=R.path(name, tag + "_garb.json"),
+                    label="%s garb %s" % (name, tag))
     d = R.run("evaluate", "distance", m2, original, "--json", label="%s distance %s" % (name, tag))
     dg = R.run("evaluate", "atoms", m2, atoms, "--diagonal", d["diagonal"], "--samples",
                atom_samples(g["m2"]["vertices"]), "--json", label="%s atoms %s" % (name, tag))

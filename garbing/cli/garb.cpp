@@ -3,16 +3,19 @@
 //        [--no-criterion N ...] [--primitives auto|ma|rt]
 //        [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C]
 //        [--spheres-only] [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N]
-//        [--max-gap F] [--stats FILE.json] [--threads N]
+//        [--max-gap F] [--check-topology] [--stats FILE.json] [--threads N]
 #include "garbing/garb.h"
 #include "core/cli_main.h"
 #include "core/medial_surface.h"
 #include "core/mesh_io.h"
 #include "core/mesh_topology.h"
 #include "core/timer.h"
+#include "skeletonize/union_topology.h"
 
 #include <algorithm>
+#include <iostream>
 #include <map>
+#include <optional>
 
 namespace {
 
@@ -51,6 +54,7 @@ Json octree_json(const gb::Octree& tree, const std::vector<int>& criteria_off) {
   j["max_depth"] = tree.max_depth;
   j["depth"] = tree.depth;
   j["hit_max_depth"] = tree.hit_max_depth;
+  j["depth_stopped_cells"] = tree.depth_stopped;
   j["criteria_off"] = criteria_off;
   j["splits_by_criterion"] = tree.splits;
   j["leaves_per_level"] = levels;
@@ -109,11 +113,22 @@ Json m2_json(const mg::MedialSurface& atoms, const gb::Garbing& r, const gb::Gar
   return j;
 }
 
+/// --check-topology: M2's components and Euler characteristic against the union of the balls'.
+struct TopologyCheck {
+  mg::skeletonize::UnionTopology union_of_balls;
+  std::size_t components = 0;  ///< M2's
+  long euler = 0;
+  double seconds = 0;
+  bool matches() const {
+    return union_of_balls.components == components && union_of_balls.euler == euler;
+  }
+};
+
 /// The --stats report: the octree's census, M1, M2 and their statistics, memory and seconds.
 Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const gb::Garbing& r,
                 const gb::GarbOptions& opt, const std::vector<int>& criteria_off,
-                const std::string& cone_source, double seconds_read, double seconds_write,
-                double seconds_total) {
+                const std::string& cone_source, const std::optional<TopologyCheck>& check,
+                double seconds_read, double seconds_write, double seconds_total) {
   Json m1 = mesh_json(r.m1.mesh, mg::mesh_topology(mg::soup_from_mesh(r.m1.mesh)));
   m1["hanging_corners"] = r.m1.hanging_corners;
   m1["split_vertices"] = r.m1.split_vertices;
@@ -129,6 +144,13 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
   j["boundary_leaves"] = owners.size();
   j["m1"] = m1;
   j["m2"] = m2;
+  if (check)
+    j["topology_check"] = {{"union_components", check->union_of_balls.components},
+                           {"union_euler", check->union_of_balls.euler},
+                           {"m2_components", check->components},
+                           {"m2_euler", check->euler},
+                           {"matches", check->matches()},
+                           {"seconds", check->seconds}};
   j["peak_memory_mb"] = peak_mb;
   j["seconds"] = {{"read", seconds_read},
                   {"octree", r.seconds.octree},
@@ -189,6 +211,10 @@ int garb_main(int argc, char** argv) {
          "--max-gap", opt.refine.max_gap,
          "split an edge whose midpoint is provably farther than F leaf sides from G (0: off)")
       ->check(mg::NonNegative);
+  bool check_topology = false;
+  app.add_flag("--check-topology", check_topology,
+               "compare M2's components and Euler characteristic with the union of the balls' "
+               "(atoms alone; warns on a mismatch)");
   app.add_option("--stats", stats_path, "write statistics as JSON");
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(mg::NonNegative);
   mg::parse_command_line(app, argc, argv);
@@ -220,15 +246,38 @@ int garb_main(int argc, char** argv) {
         throw mg::InvalidInput(input + ": atom " + std::to_string(i) +
                                " has radius 0: the balls alone (--primitives rt) need radii > 0; "
                                "only a medial mesh's envelope (edges or faces) takes them");
+  const bool envelope = gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::envelope;
+  if (check_topology && envelope)
+    throw mg::InvalidInput(input +
+                           ": --check-topology compares with the union of the balls: a medial "
+                           "mesh's envelope needs --primitives rt");
   const gb::Garbing result = gb::garb(atoms, opt);
+  std::optional<TopologyCheck> check;
+  if (check_topology) {
+    const mg::Stopwatch check_clock;
+    const mg::MeshTopology m2 = mg::mesh_topology(mg::soup_from_mesh(result.m2.mesh));
+    check = TopologyCheck{mg::skeletonize::union_topology(atoms), m2.components, m2.euler, 0};
+    check->seconds = check_clock.seconds();
+  }
   mg::Stopwatch write_clock;
   if (!m1_path.empty()) mg::write_mesh(result.m1.mesh, m1_path);
   mg::write_mesh(result.m2.mesh, output);
   const double seconds_write = write_clock.seconds();
   if (!stats_path.empty())
-    mg::write_json(stats_json(input, atoms, result, opt, off, cones, seconds_read, seconds_write,
-                              clock.seconds()),
+    mg::write_json(stats_json(input, atoms, result, opt, off, cones, check, seconds_read,
+                              seconds_write, clock.seconds()),
                    stats_path);
+  // The promise (M2 has the union's topology) may break: say so, in one line each.
+  if (result.tree.hit_max_depth)
+    std::cerr << "garb: warning: " << input << ": the octree's depth stop (level "
+              << result.tree.max_depth << ") kept " << result.tree.depth_stopped
+              << " cell(s) from splitting, likely near-tangent or nearly coincident balls: M2 may "
+                 "not have the union's topology\n";
+  if (check && !check->matches())
+    std::cerr << "garb: warning: " << input << ": M2 has " << check->components
+              << " component(s) and Euler characteristic " << check->euler
+              << ", the union of the balls " << check->union_of_balls.components << " and "
+              << check->union_of_balls.euler << "\n";
   return 0;
 }
 

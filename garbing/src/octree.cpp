@@ -419,6 +419,7 @@ class OctreeBuilder {
       if (!tree_.cells[c].is_leaf()) continue;
       if (tree_.cells[c].level >= opt_.max_depth) {
         tree_.hit_max_depth = true;
+        ++tree_.depth_stopped;
         continue;
       }
       ++tree_.splits[marks[i].second - 1];

@@ -58,6 +58,44 @@ class GarbCli(U.CliTestCase):
         self.assertEqual((stats["m2"]["primitives"], stats["m2"]["cones"]), ("rt", 0))
         self.assertEqual(stats["m2"]["components"], 2)
 
+    def test_check_topology_matches_on_a_ring(self):
+        ma = self.write("ring.ma", "".join("%r %r 0 0.3\n" % (
+            math.cos(k * 0.10471975511965977), math.sin(k * 0.10471975511965977)) for k in range(60)))
+        r = run(ma, "-o", self.path("m.off"), "--check-topology", "--stats", self.path("s.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stderr, "")
+        check = json.load(open(self.path("s.json")))["topology_check"]
+        self.assertEqual((check["union_components"], check["union_euler"]), (1, 0))
+        self.assertEqual((check["m2_components"], check["m2_euler"]), (1, 0))
+        self.assertTrue(check["matches"])
+
+    def test_depth_stop_and_topology_mismatch_are_reported(self):
+        # Two balls 1e-6 apart: the criteria keep splitting the gap until the depth stop, and
+        # M2 glues the two spheres (the union has two components).
+        ma = self.write("near.ma", "2 0 0\nv 0 0 0 1\nv 2.000001 0 0 1\n")
+        r = run(ma, "-o", self.path("m.off"), "--max-depth", "9", "--check-topology",
+                "--stats", self.path("s.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = r.stderr.strip().splitlines()
+        self.assertEqual(len(lines), 2, r.stderr)
+        self.assertIn("garb: warning: %s: the octree's depth stop (level 9) kept" % ma, lines[0])
+        self.assertIn("near-tangent or nearly coincident balls", lines[0])
+        self.assertIn("M2 has 1 component(s) and Euler characteristic 2, the union of the balls 2 "
+                      "and 4", lines[1])
+        stats = json.load(open(self.path("s.json")))
+        self.assertTrue(stats["hit_max_depth"])
+        self.assertGreater(stats["depth_stopped_cells"], 0)
+        self.assertFalse(stats["topology_check"]["matches"])
+        # Without --check-topology: the depth stop's line alone.
+        r = run(ma, "-o", self.path("n.off"), "--max-depth", "9")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+
+    def test_check_topology_refuses_an_envelope(self):
+        ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
+        self.assert_refused(run(ma, "-o", self.path("m.off"), "--check-topology"), 2,
+                            "--check-topology compares with the union of the balls")
+
     def test_cone_options_choose_rt(self):
         ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
         r = run(ma, "-o", self.path("m.off"), "--primitives", "ma", "--cones", "edges")

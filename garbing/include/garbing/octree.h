@@ -74,6 +74,7 @@ struct Octree {
   int max_depth = 0;           ///< the safety stop given
   int depth = 0;               ///< deepest level present
   bool hit_max_depth = false;  ///< a criterion wanted to split a cell at max_depth
+  long depth_stopped = 0;      ///< how many cells a criterion wanted to split at max_depth
   std::array<long, 4> splits = {0, 0, 0, 0};  ///< cells split by criterion k (first reason)
   std::vector<OctreeCell> cells;              ///< cells[0] is the root
   std::vector<int> leaves;                    ///< leaf indices, sorted by (Morton order, level)
