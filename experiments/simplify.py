@@ -27,11 +27,13 @@ FRACTIONS = [1, 2, 5]  # % of the pole count
 MIN_ATOMS = 50
 
 COLUMNS = ["model", "fraction", "poles", "target", "atoms", "edges", "faces", "target_reached",
-           "collapses", "refused_topology", "refused_outside", "refused_excess", "seconds",
+           "collapses", "refused_topology", "refused_outside", "refused_excess",
+           "refused_shortfall", "seconds",
            "h_g_o", "rms_g_o", "m2_v", "components", "genus", "expected_components",
            "expected_genus", "h_m2_o", "poles_h_g_o", "poles_h_m2_o"]
 HEADERS = ["model", "% of poles", "poles", "target", "atoms", "edges", "faces", "reached",
            "collapses", "refused (topology)", "refused (outside)", "refused (excess)",
+           "refused (shortfall)",
            "simplify s", "H(G, O) %", "RMS(G, O) %", "M2 V", "M2 components", "M2 genus",
            "O components", "O genus", "H(M2, O) %", "poles: H(G, O) %", "poles: H(M2, O) %"]
 
@@ -82,6 +84,7 @@ def simplify_job(build, work, name, fractions=FRACTIONS, poles_row=True):
             "target_reached": "yes" if s["target_reached"] else "no",
             "collapses": s["collapses"], "refused_topology": s["refusals"]["topology"],
             "refused_outside": s["refusals"]["outside"], "refused_excess": s["refusals"]["excess"],
+            "refused_shortfall": s["refusals"]["shortfall"],
             "seconds": s["seconds"]["simplify"], "h_g_o": go["hausdorff_pct"],
             "rms_g_o": go["rms_pct"], "m2_v": gb["m2"]["vertices"],
             "components": gb["m2"]["components"], "genus": gb["m2"]["genus"],

@@ -156,8 +156,8 @@ PolygonSoup make_bumpy_torus(int ring, int tube, double major, double minor, dou
 
 PolygonSoup make_capsule(int ring, int rows, double half_length, double radius) {
   if (ring < 3 || rows < 1) throw InvalidInput("capsule: need ring >= 3 and rows >= 1");
-  if (!(half_length >= 0 && radius > 0 && std::isfinite(half_length) && std::isfinite(radius)))
-    throw InvalidInput("capsule: need half_length >= 0 and radius > 0");
+  if (!(half_length > 0 && radius > 0 && std::isfinite(half_length) && std::isfinite(radius)))
+    throw InvalidInput("capsule: need half_length > 0 and radius > 0 (0: a sphere)");
   // The profile from the north pole to the south pole, as (z, distance to the axis), poles
   // excluded.
   std::vector<std::array<double, 2>> profile;

@@ -148,6 +148,7 @@ nlohmann::ordered_json simplify_json(const mg::skeletonize::SimplifyStats& s, st
   j["diagonal"] = s.diagonal;
   j["worst_excess"] = s.worst_excess;
   j["worst_excess_pct"] = 100 * s.worst_excess / diagonal;
+  j["input_shortfall_pct"] = 100 * s.input_shortfall / diagonal;
   j["max_quadric_error"] = s.max_error;
   j["samples_to_envelope"] = {{"max", d.max},
                               {"mean", d.mean},
@@ -242,7 +243,7 @@ int skeletonize_main(int argc, char** argv) {
                  "N | P%: collapse the medial mesh of the poles (implies --connectivity) down to N "
                  "atoms, or P% of the skeleton's atoms");
   app.add_option("--stability-weight", sopt.stability_weight,
-                 "with --simplify: kappa of the cost (E + kappa D^4) gamma^2 (D: the balls' "
+                 "with --simplify: kappa of the cost (E + kappa D^4) gamma^2 (D: the mesh's "
                  "bounding-box diagonal)")
       ->check(mg::NonNegative);
   bool all_simplices = false;

@@ -426,7 +426,10 @@ class Simplifier {
     // Tighter still: the depth in the union of every input atom's inscribed ball.
     lower = inscribed_->deepest(y, lower);
     if (r - lower <= over) return r - lower;
-    return r - solid_->distance(y, *c[nearest].anchor);
+    // Exact: the centre may have left the object (a new cone or slab's axis crossing its
+    // boundary), then the ball sticks out by r + d.
+    const double d = solid_->distance(y, *c[nearest].anchor);
+    return solid_->contains(y) ? r - d : r + d;
   }
 
   /// Interior samples along a length: spaced by at most half `radius`, 1 to 15.
@@ -728,6 +731,12 @@ class Simplifier {
     std::vector<int> face_of(samples_.size(), -1);
     tbb::parallel_for(std::size_t(used), samples_.size(),
                       [&](std::size_t s) { face_of[s] = solid_->closest_triangle(samples_[s]); });
+    // The faces' normals point out of the solid when the fan triangles enclose a positive
+    // volume (the mesh is consistently oriented; reversed, every normal is flipped).
+    double volume = 0;
+    for (const auto& t : tris)
+      volume += object_.points[t[0]].dot(object_.points[t[1]].cross(object_.points[t[2]]));
+    const double outward = volume < 0 ? -1.0 : 1.0;
     std::vector<std::vector<int>> on(tris.size());
     for (std::size_t f = 0; f < tris.size(); ++f)
       for (int v : tris[f]) on[f].push_back(atom_of_sample_[rank[v]]);
@@ -744,7 +753,7 @@ class Simplifier {
       if (count == 0) continue;
       const double weight = norm / 2 / static_cast<double>(count);
       for (int x : on[f])
-        if (x >= 0) quadric_[x].add_plane(cross / norm, p0, weight);
+        if (x >= 0) quadric_[x].add_plane(outward * cross / norm, p0, weight);
     }
   }
 
@@ -809,9 +818,13 @@ class Simplifier {
 
   /// The largest distance from the samples of a and b to the solid of the star the collapse of
   /// {a, b} into m would leave (m's ball, its cones and slabs) and the neighbours' balls; stops
-  /// once over `over`. A sample inside counts 0. An upper bound on each sample's distance to
-  /// the whole envelope.
-  double star_shortfall(int a, int b, const MedialAtom& m, double over) const {
+  /// once over `over`. An upper bound on each sample's distance to the whole envelope; a sample
+  /// inside counts 0. With `record`, every sample's distance is written there instead. Unlike
+  /// the excess bound, nothing is allowed for what the poles already lacked: a sample farther
+  /// than delta outside its pole's star blocks every collapse of that atom (measured: allowing
+  /// it, hand's 2 % went from 2.76 to 3.77 %).
+  double star_shortfall(int a, int b, const MedialAtom& m, double over,
+                        std::vector<double>* record = nullptr) const {
     if (samples_of_[a].empty() && samples_of_[b].empty()) return 0;
     std::vector<MedialAtom> balls = {m};
     std::vector<garbing::Cone> cones;
@@ -846,12 +859,16 @@ class Simplifier {
         for (const MedialAtom& ball : balls)
           d = std::min(d, (s - ball.centre).norm() - ball.radius);
         for (const garbing::Cone& cone : cones) {
-          if (d <= worst) break;
+          if (!record && d <= worst) break;
           d = std::min(d, garbing::hull_distance(cone, s));
         }
         for (const garbing::Slab& slab : slabs) {
-          if (d <= worst) break;
+          if (!record && d <= worst) break;
           d = std::min(d, garbing::slab_distance(slab, s));
+        }
+        if (record) {
+          (*record)[k] = d;
+          continue;
         }
         worst = std::max(worst, d);
         if (worst > over) return worst;
@@ -880,6 +897,15 @@ class Simplifier {
     };
     const long target = static_cast<long>(opt_.target_atoms);
     long round_collapses = 0;
+    // What the samples already lack (their distance outside their atom's star before any
+    // collapse), for the statistics.
+    std::vector<double> initial(samples_.size(), 0);
+    if (delta_ > 0)
+      tbb::parallel_for(std::size_t(0), spheres_.size(), [&](std::size_t i) {
+        const int a = static_cast<int>(i);
+        if (complex_->alive(a)) star_shortfall(a, a, spheres_[a], INFINITY, &initial);
+      });
+    for (double d : initial) st.input_shortfall = std::max(st.input_shortfall, d);
     push_all();
     st.rounds = 1;
     // The bounds start at 1 / kBoundSteps of tau and delta and double whenever a pass over
@@ -943,13 +969,13 @@ class Simplifier {
         continue;
       }
       if (!inside(m.atom.centre, c.a, c.b)) {
-        ++st.refused_outside;
-        refuse(c, 0);
+        ++st.refused_outside;  // the same atoms give the same centre: not retried
         continue;
       }
       if (delta_ > 0) {
-        const double shortfall = star_shortfall(c.a, c.b, m.atom, scale * delta_);
-        if (shortfall > scale * delta_) {
+        const double allowed = scale * delta_;
+        const double shortfall = star_shortfall(c.a, c.b, m.atom, allowed);
+        if (shortfall > allowed) {
           ++st.refused_shortfall;
           refuse(c, shortfall / delta_);
           continue;
@@ -1077,6 +1103,7 @@ class Simplifier {
   std::vector<Vec3> anchor_;                  // the mesh's point closest to its centre
   std::vector<double> depth_;                 // the distance from its centre to the mesh
   std::vector<double> overshoot_;  // the largest r - depth of the input atoms merged into it
+
   // The input complex's edges and triangles (sorted) and their estimated excesses.
   std::vector<Pair> edges0_;
   std::vector<Triple> triangles0_;

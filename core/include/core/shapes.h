@@ -30,7 +30,7 @@ PolygonSoup make_bumpy_torus(int ring, int tube, double major, double minor, dou
 /// by two hemispherical caps (a surface of revolution, vertices exactly on it). `ring` samples
 /// around the axis, `rows` rings per quarter circle of a cap, the cylinder's rings spaced as the
 /// caps' (at least one band). Triangles; the poles are fans.
-/// @pre ring >= 3, rows >= 1, half_length >= 0, radius > 0   @throws InvalidInput
+/// @pre ring >= 3, rows >= 1, half_length > 0, radius > 0   @throws InvalidInput
 PolygonSoup make_capsule(int ring, int rows, double half_length, double radius);
 
 /// Axis-aligned box [lo, hi] as 6 quads.   @pre lo < hi componentwise
