@@ -33,7 +33,8 @@ function(mg_add_program name)
 endfunction()
 
 # mg_add_gtest(<name> SOURCES ... LIBS ... [PROPERTIES ...]): a GoogleTest executable whose
-# tests CTest discovers one by one. PROPERTIES go to every discovered test (fixtures, labels).
+# tests CTest discovers one by one. PROPERTIES go to every discovered test (fixtures, labels);
+# without them the tests are labelled `unit` (self-contained: what the sanitizer job runs).
 function(mg_add_gtest name)
   cmake_parse_arguments(A "" "" "SOURCES;LIBS;PROPERTIES" ${ARGN})
   add_executable(${name} ${A_SOURCES})
@@ -45,7 +46,8 @@ function(mg_add_gtest name)
   if(A_PROPERTIES)
     gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${A_PROPERTIES})
   else()
-    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60)
+    gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
+    add_dependencies(unit_tests ${name})
   endif()
 endfunction()
 

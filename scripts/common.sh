@@ -34,6 +34,17 @@ mg_install() {
   $cmd
 }
 
+# The sanitizer job's build: the unit tests (label `unit`) with AddressSanitizer and
+# UndefinedBehaviorSanitizer, in $MG_SANITIZE_DIR.
+MG_SANITIZE_DIR=${MG_SANITIZE_DIR:-build-sanitize}
+mg_build_sanitize() {
+  local extra=()
+  [ "${CI:-}" = "true" ] && extra+=(-DMG_WERROR=ON)
+  cmake -S . -B "$MG_SANITIZE_DIR" -DCMAKE_BUILD_TYPE=Release -DMG_SANITIZE=ON \
+    -DPython3_EXECUTABLE="$MG_PYTHON" "${extra[@]}"
+  cmake --build "$MG_SANITIZE_DIR" --parallel "$(nproc)" --target unit_tests
+}
+
 mg_build() {
   local extra=()
   # CI builds with warnings as errors (STYLE.md).
