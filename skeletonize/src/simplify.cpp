@@ -427,8 +427,10 @@ class Simplifier {
     lower = inscribed_->deepest(y, lower);
     if (r - lower <= over) return r - lower;
     // Exact: the centre may have left the object (a new cone or slab's axis crossing its
-    // boundary), then the ball sticks out by r + d.
+    // boundary), then the ball sticks out by r + d. The inside test only where it decides:
+    // y in an inscribed ball (lower > 0) is inside, and r - d over `over` is refused anyway.
     const double d = solid_->distance(y, *c[nearest].anchor);
+    if (lower > 0 || r - d > over) return r - d;
     return solid_->contains(y) ? r - d : r + d;
   }
 
