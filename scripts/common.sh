@@ -5,7 +5,7 @@
 MG_PACKAGES=(
   build-essential cmake ccache clang-format
   libcgal-dev libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev libbenchmark-dev libopenvdb-dev
+  libgtest-dev libbenchmark-dev libopenvdb-dev clang libclang-rt-14-dev
   povray povray-includes meshlab xvfb xauth
   python3 python3-matplotlib python3-numpy
 )
@@ -43,6 +43,16 @@ mg_build_sanitize() {
   cmake -S . -B "$MG_SANITIZE_DIR" -DCMAKE_BUILD_TYPE=Release -DMG_SANITIZE=ON \
     -DPython3_EXECUTABLE="$MG_PYTHON" "${extra[@]}"
   cmake --build "$MG_SANITIZE_DIR" --parallel "$(nproc)" --target unit_tests
+}
+
+# The fuzz job's build: the readers' libFuzzer targets (clang), in $MG_FUZZ_DIR.
+MG_FUZZ_DIR=${MG_FUZZ_DIR:-build-fuzz}
+mg_build_fuzz() {
+  local extra=()
+  [ "${CI:-}" = "true" ] && extra+=(-DMG_WERROR=ON)
+  cmake -S . -B "$MG_FUZZ_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
+    -DMG_FUZZ=ON -DPython3_EXECUTABLE="$MG_PYTHON" "${extra[@]}"
+  cmake --build "$MG_FUZZ_DIR" --parallel "$(nproc)" --target fuzz_ma fuzz_off fuzz_obj fuzz_ply fuzz_stl
 }
 
 mg_build() {

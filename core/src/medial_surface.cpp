@@ -165,7 +165,9 @@ class Parser {
       if (counts[k] < 0) fail(head, "negative count in header 'nv ne nf'");
     const long nv = counts[0], ne = counts[1], nf = counts[2];
     MedialSurface s;
-    s.atoms.reserve(static_cast<std::size_t>(nv));
+    // At most one atom per line: a header claiming more fails at the count check, not in an
+    // allocation (found by fuzz_ma).
+    s.atoms.reserve(std::min(static_cast<std::size_t>(nv), lines.size()));
     for (std::size_t k = 1; k < lines.size(); ++k) {
       const Line& line = lines[k];
       const std::string& tag = line.tokens[0];

@@ -206,6 +206,15 @@ TEST(MedialSurface, RefusesDegenerateEdgesAndFacesNamingTheLine) {
   for (const auto& [text, message] : cases) EXPECT_EQ(parse_error(text), message) << text;
 }
 
+TEST(MedialSurface, AHugeHeaderCountFailsAtTheCountNotInAnAllocation) {
+  // Found by fuzz_ma (core/fuzz/seeds/ma/found_huge_count.ma).
+  const std::pair<std::string, std::string> cases[] = {
+      {"99999999999999 0 0\nv 0 0 0 1\n",
+       "test.ma: header announces 99999999999999 atoms ('v' lines), found 1"},
+  };
+  for (const auto& [text, message] : cases) EXPECT_EQ(parse_error(text), message) << text;
+}
+
 TEST(MedialSurface, ValidateRefusesDegenerateEdgesAndFacesByIndex) {
   mg::MedialSurface s;
   s.atoms = {{Eigen::Vector3d::Zero(), 1.0}, {Eigen::Vector3d::Ones(), 1.0}};

@@ -104,6 +104,17 @@ TEST(MeshIo, RefusesBadFilesWithNameLineAndReason) {
             dir.file("s.off") + ":7: face 0 has 2 vertices (3 or more needed)");
   EXPECT_EQ(read_error(dir.write("z.off", "OFF\n4 0 0\n" + tet)), dir.file("z.off") + ": no faces");
   EXPECT_NE(read_error(dir.write("bad.obj", "v 0 0 0\nf 1 2 3\n")), "");
+  // Found by the fuzz targets (core/fuzz/seeds/*/found_*): a huge count reserved memory
+  // before the file could fail; CGAL's PLY reader read a property before any element out of
+  // an empty vector.
+  EXPECT_EQ(read_error(dir.write("huge.off", "OFF\n999999999 1 0\n0 0 0\n")),
+            dir.file("huge.off") + ": file ends early: expected 999999999 vertices, found 1");
+  EXPECT_EQ(read_error(dir.write("int.off", "OFF\n99999999999 1 0\n0 0 0\n")),
+            dir.file("int.off") + ":2: vertex count 99999999999 exceeds 2147483647");
+  EXPECT_EQ(read_error(dir.write("p.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n")),
+            dir.file("p.ply") + ":3: a property before any element");
+  EXPECT_EQ(read_error(dir.write("k.ply", "ply\nformat ascii 1.0\ndlement vertex 1\nend_header\n")),
+            dir.file("k.ply") + ":3: unknown PLY header keyword 'dlement'");
 }
 
 TEST(MeshIo, NonManifoldInputIsRefusedNamingTheElement) {
