@@ -253,8 +253,10 @@ void check_mesh_output_path(const std::string& output, const std::vector<std::st
 
 namespace {
 
-/// A PLY header's lines, checked before CGAL's reader sees them: it reads a `property` line
-/// before any `element` line out of an empty vector (undefined behaviour, found by fuzz_ply).
+/// A PLY header's lines, checked before CGAL's reader sees them, which has undefined behaviour
+/// (found by fuzz_ply) on a `property` line before any `element` line (read out of an empty
+/// vector), on coordinates x, y, z that are not float or double, and on vertex indices that
+/// are not a list of integers (a null pointer from a failed cast).
 void check_ply_header(std::istream& in, const std::string& path) {
   std::string text;
   int line = 0;
@@ -276,6 +278,23 @@ void check_ply_header(std::istream& in, const std::string& path) {
       element = true;
     } else if (keyword == "property") {
       if (!element) fail("a property before any element");
+      std::string type, name;
+      words >> type;
+      const bool list = type == "list";
+      std::string count_type, item_type;
+      if (list) words >> count_type >> item_type;
+      words >> name;
+      static const char* reals[] = {"float", "float32", "double", "float64"};
+      static const char* integers[] = {"char",   "int8",   "uchar", "uint8", "short", "int16",
+                                       "ushort", "uint16", "int",   "int32", "uint",  "uint32"};
+      auto one_of = [](const std::string& t, const auto& set) {
+        return std::find(std::begin(set), std::end(set), t) != std::end(set);
+      };
+      if ((name == "x" || name == "y" || name == "z") && (list || !one_of(type, reals)))
+        fail("coordinate '" + name + "' must be float or double, got '" + type + "'");
+      if ((name == "vertex_indices" || name == "vertex_index") &&
+          (!list || !one_of(count_type, integers) || !one_of(item_type, integers)))
+        fail("'" + name + "' must be a list of integers");
     } else if (keyword != "format" && keyword != "comment" && keyword != "obj_info") {
       fail("unknown PLY header keyword '" + keyword + "'");
     }

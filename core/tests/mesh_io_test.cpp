@@ -115,6 +115,20 @@ TEST(MeshIo, RefusesBadFilesWithNameLineAndReason) {
             dir.file("p.ply") + ":3: a property before any element");
   EXPECT_EQ(read_error(dir.write("k.ply", "ply\nformat ascii 1.0\ndlement vertex 1\nend_header\n")),
             dir.file("k.ply") + ":3: unknown PLY header keyword 'dlement'");
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";
+  EXPECT_EQ(read_error(dir.write("i.ply", header + "property float x\nproperty int32 y\n"
+                                                   "property float z\nend_header\n")),
+            dir.file("i.ply") + ":5: coordinate 'y' must be float or double, got 'int32'");
+  EXPECT_EQ(read_error(dir.write("v.ply", header + "property float x\nproperty float y\n"
+                                                   "property float z\nelement face 1\n"
+                                                   "property int vertex_indices\nend_header\n")),
+            dir.file("v.ply") + ":8: 'vertex_indices' must be a list of integers");
+  EXPECT_EQ(
+      read_error(dir.write("l.ply", header + "property float x\nproperty float y\n"
+                                             "property float z\nelement face 1\n"
+                                             "property list int int vertex_indices\nend_header\n"
+                                             "0 0 0\n1 0 0\n0 1 0\n-5 0 1 2\n")),
+      dir.file("l.ply") + ": malformed ply file");
 }
 
 TEST(MeshIo, NonManifoldInputIsRefusedNamingTheElement) {
