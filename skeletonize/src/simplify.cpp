@@ -39,34 +39,6 @@ using detail::Pair;
 using detail::Quad;
 using detail::Triple;
 
-/// The planes touching three spheres from outside (the slab's tangent planes): in the plane of
-/// the centres (unit normal nu) the radius is affine with in-plane gradient g; when |g| < 1 the
-/// planes have unit normals n = -g +- sqrt(1 - |g|^2) nu and touch sphere i at c_i + r_i n.
-/// False for collinear centres or |g| >= 1. `area`: the area of one tangent triangle.
-bool tangent_planes(const MedialAtom& a, const MedialAtom& b, const MedialAtom& c,
-                    std::array<Vec3, 2>& normal, double& area) {
-  const Vec3 e1 = b.centre - a.centre, e2 = c.centre - a.centre;
-  const Vec3 cross = e1.cross(e2);
-  const double longest =
-      std::max({e1.squaredNorm(), e2.squaredNorm(), (c.centre - b.centre).squaredNorm()});
-  if (!(cross.norm() > 1e-12 * longest)) return false;  // collinear (slab.h's test)
-  const Vec3 nu = cross.normalized();
-  // g = alpha e1 + beta e2 with g . e1 = rb - ra, g . e2 = rc - ra.
-  const double g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2);
-  const double d1 = b.radius - a.radius, d2 = c.radius - a.radius;
-  const double det = g11 * g22 - g12 * g12;
-  const Vec3 g = ((g22 * d1 - g12 * d2) * e1 + (g11 * d2 - g12 * d1) * e2) / det;
-  const double g2 = g.squaredNorm();
-  if (!(g2 < 1)) return false;
-  const double s = std::sqrt(1 - g2);
-  normal = {Vec3(-g + s * nu), Vec3(-g - s * nu)};
-  const Vec3& n = normal[0];
-  const Vec3 ta = a.centre + a.radius * n, tb = b.centre + b.radius * n,
-             tc = c.centre + c.radius * n;
-  area = 0.5 * (tb - ta).cross(tc - ta).norm();
-  return true;
-}
-
 /// Two unit vectors completing u (unit) to an orthonormal basis, chosen from u alone.
 std::array<Vec3, 2> perpendiculars(const Vec3& u) {
   int axis = 0;
@@ -674,18 +646,21 @@ class Simplifier {
     }
     std::vector<Pair> cone_edges;
     for (const Triple& t : complex_->triangle_list()) {
-      std::array<Vec3, 2> normal;
-      double area = 0;
-      if (!tangent_planes(a[t[0]], a[t[1]], a[t[2]], normal, area)) {
+      // The slab's two tangent triangles (garbing's slab.h), or its edges' cones without them.
+      const MedialAtom &x = a[t[0]], &y = a[t[1]], &z = a[t[2]];
+      const bool flat = garbing::collinear_centres(x, y, z);
+      const garbing::Slab slab = flat ? garbing::Slab{} : garbing::make_slab(x, y, z, 0, 1, 2);
+      if (flat || !slab.has_tangent_triangles) {
         cone_edges.push_back({t[0], t[1]});
         cone_edges.push_back({t[0], t[2]});
         cone_edges.push_back({t[1], t[2]});
         continue;
       }
-      for (const Vec3& n : normal) {
-        const Vec3 p = a[t[0]].centre + a[t[0]].radius * n;
-        for (int v : t) quadric_[v].add_plane(n, p, area / 3);
-      }
+      const auto& tri = slab.tangent[0];
+      const double area = 0.5 * (tri[1] - tri[0]).cross(tri[2] - tri[0]).norm();
+      for (int side = 0; side < 2; ++side)
+        for (int v : t)
+          quadric_[v].add_plane(slab.tangent_normal[side], slab.tangent[side][0], area / 3);
     }
     for (const Pair& e : complex_->edge_list())
       if (complex_->triangles_on_edge(e[0], e[1]) == 0) cone_edges.push_back(e);
