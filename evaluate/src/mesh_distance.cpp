@@ -2,6 +2,7 @@
 #include "evaluate/mesh_distance.h"
 
 #include "core/detail/cgal_conversions.h"
+#include "core/detail/plain_distance_traits.h"
 #include "core/errors.h"
 
 #include <CGAL/AABB_traits.h>
@@ -25,72 +26,10 @@ using CgalTriangle = Kernel::Triangle_3;
 using TriangleIterator = std::vector<CgalTriangle>::const_iterator;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 
-/// Closest point of triangle abc to p in plain double arithmetic (Ericson, Real-Time Collision
-/// Detection, 5.1.5): Voronoi regions of the vertices, then of the edges, then the face.
-Point closest_on_triangle(const Point& p, const CgalTriangle& t) {
-  using V = Eigen::Vector3d;
-  const V P(p.x(), p.y(), p.z()), A(t[0].x(), t[0].y(), t[0].z()), B(t[1].x(), t[1].y(), t[1].z()),
-      C(t[2].x(), t[2].y(), t[2].z());
-  auto out = [](const V& q) { return Point(q.x(), q.y(), q.z()); };
-  const V ab = B - A, ac = C - A, ap = P - A;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return t[0];
-  const V bp = P - B;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return t[1];
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return out(A + (d1 / (d1 - d3)) * ab);
-  const V cp = P - C;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return t[2];
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return out(A + (d2 / (d2 - d6)) * ac);
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return out(B + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (C - B));
-  const double denom = 1 / (va + vb + vc);
-  return out(A + ab * (vb * denom) + ac * (vc * denom));
-}
+double squared(const Point& a, const Point& b) { return detail::squared_plain(a, b); }
 
-double squared(const Point& a, const Point& b) {
-  const double x = a.x() - b.x(), y = a.y() - b.y(), z = a.z() - b.z();
-  return x * x + y * y + z * z;
-}
-
-/// CGAL's AABB traits with the two distance functors of the closest-point traversal done in
-/// plain doubles: CGAL's versions run filtered predicates (sphere against box) and its general
-/// triangle projection, 60% of a query's time (measured with perf). A distance needs no exact
-/// predicate: the result is exact up to the rounding of the final projection either way.
-class DistanceTraits : public CGAL::AABB_traits<Kernel, Primitive> {
- public:
-  class Compare_distance {
-   public:
-    /// SMALLER when the closed box meets the ball around p through `bound`.
-    CGAL::Comparison_result operator()(const Point& p, const CGAL::Bbox_3& box,
-                                       const Point& bound) const {
-      double d = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double c = p[k];
-        if (c < box.min(k))
-          d += (box.min(k) - c) * (box.min(k) - c);
-        else if (c > box.max(k))
-          d += (c - box.max(k)) * (c - box.max(k));
-      }
-      return d <= squared(p, bound) ? CGAL::SMALLER : CGAL::LARGER;
-    }
-  };
-  class Closest_point {
-   public:
-    Point operator()(const Point& p, const Primitive& primitive, const Point& bound) const {
-      const Point q = closest_on_triangle(p, primitive.datum());
-      return squared(p, q) < squared(p, bound) ? q : bound;
-    }
-  };
-  Compare_distance compare_distance_object() const { return {}; }
-  Closest_point closest_point_object() const { return {}; }
-};
-
-using Tree = CGAL::AABB_tree<DistanceTraits>;
+/// Closest-point queries in plain doubles (core/detail/plain_distance_traits.h).
+using Tree = CGAL::AABB_tree<detail::PlainDistanceTraits<Primitive>>;
 
 }  // namespace
 

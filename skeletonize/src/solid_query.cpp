@@ -1,6 +1,8 @@
 // SolidQuery: CGAL's AABB tree over the mesh's triangles and Side_of_triangle_mesh.
 #include "skeletonize/solid_query.h"
 
+#include "core/detail/plain_distance_traits.h"
+
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -19,6 +21,8 @@ using Vec3 = Eigen::Vector3d;
 using SurfaceMesh = CGAL::Surface_mesh<Point>;
 using Primitive = CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+// Closest points in plain doubles (core/detail/plain_distance_traits.h).
+using PlainTree = CGAL::AABB_tree<detail::PlainDistanceTraits<Primitive>>;
 using Inside = CGAL::Side_of_triangle_mesh<SurfaceMesh, K, CGAL::Default, Tree>;
 
 Point to_point(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
@@ -39,15 +43,23 @@ struct SolidQuery::Impl {
   SurfaceMesh surface;
   std::unique_ptr<Tree> tree;
   std::unique_ptr<Inside> inside;
+  std::unique_ptr<PlainTree> plain;  // with plain distances: the distance queries' tree
 };
 
-SolidQuery::SolidQuery(const PolygonSoup& mesh) : impl_(std::make_unique<Impl>()) {
+SolidQuery::SolidQuery(const PolygonSoup& mesh, Distances distances)
+    : impl_(std::make_unique<Impl>()) {
   impl_->surface = triangle_mesh(mesh);
   impl_->tree = std::make_unique<Tree>(faces(impl_->surface).first, faces(impl_->surface).second,
                                        impl_->surface);
   impl_->tree->build();
   impl_->tree->accelerate_distance_queries();
   impl_->inside = std::make_unique<Inside>(*impl_->tree);
+  if (distances == Distances::plain) {
+    impl_->plain = std::make_unique<PlainTree>(faces(impl_->surface).first,
+                                               faces(impl_->surface).second, impl_->surface);
+    impl_->plain->build();
+    impl_->plain->accelerate_distance_queries();
+  }
 }
 
 SolidQuery::~SolidQuery() = default;
@@ -57,20 +69,27 @@ bool SolidQuery::contains(const Vec3& p) const {
 }
 
 double SolidQuery::distance(const Vec3& p) const {
-  return std::sqrt(impl_->tree->squared_distance(to_point(p)));
+  const Point q = to_point(p);
+  return std::sqrt(impl_->plain ? impl_->plain->squared_distance(q)
+                                : impl_->tree->squared_distance(q));
 }
 
 double SolidQuery::distance(const Vec3& p, const Vec3& hint) const {
-  return std::sqrt(impl_->tree->squared_distance(to_point(p), to_point(hint)));
+  const Point q = to_point(p), h = to_point(hint);
+  return std::sqrt(impl_->plain ? impl_->plain->squared_distance(q, h)
+                                : impl_->tree->squared_distance(q, h));
 }
 
 Vec3 SolidQuery::closest_point(const Vec3& p) const {
-  const Point q = impl_->tree->closest_point(to_point(p));
+  const Point q = impl_->plain ? impl_->plain->closest_point(to_point(p))
+                               : impl_->tree->closest_point(to_point(p));
   return {q.x(), q.y(), q.z()};
 }
 
 int SolidQuery::closest_triangle(const Vec3& p) const {
-  return static_cast<int>(impl_->tree->closest_point_and_primitive(to_point(p)).second.idx());
+  const Point q = to_point(p);
+  return static_cast<int>(impl_->plain ? impl_->plain->closest_point_and_primitive(q).second.idx()
+                                       : impl_->tree->closest_point_and_primitive(q).second.idx());
 }
 
 bool SolidQuery::segment_inside(const Vec3& a, const Vec3& b) const {

@@ -1,6 +1,7 @@
 // Inner poles on generated shapes: analytic atoms, options, determinism, refusals.
 #include "skeletonize/poles.h"
 #include "core/errors.h"
+#include "core/random.h"
 #include "core/shapes.h"
 #include "skeletonize/union_topology.h"
 
@@ -179,6 +180,28 @@ TEST(SolidQuery, InsideTestsAndDistancesOnABox) {
       box.triangle_inside(Vector3d(0.1, 0.1, 0.1), Vector3d(1.9, 0.1, 0.1), Vector3d(1, 0.9, 0.9)));
   EXPECT_FALSE(
       box.triangle_inside(Vector3d(0.1, 0.1, 0.1), Vector3d(1.9, 0.1, 0.1), Vector3d(1, 1.5, 0.5)));
+}
+
+TEST(SolidQuery, PlainDistancesAgreeWithCgalsOnASphereAndADegenerateFace) {
+  // A geodesic sphere (curved: every region of the triangle projection is met) with one
+  // vertex of a face pushed onto the segment of the other two (a collinear face).
+  mg::PolygonSoup sphere = mg::make_geodesic_sphere(4, 1.0);
+  const auto& f = sphere.faces.front();
+  sphere.points[f[2]] = 0.5 * (sphere.points[f[0]] + sphere.points[f[1]]);
+  const sk::SolidQuery cgal(sphere);
+  const sk::SolidQuery plain(sphere, sk::SolidQuery::Distances::plain);
+  auto coordinate = [](std::uint64_t k) { return 4 * mg::unit_interval(mg::splitmix64(k)) - 2; };
+  for (std::uint64_t i = 0; i < 2000; ++i) {
+    const Vector3d p(coordinate(3 * i), coordinate(3 * i + 1), coordinate(3 * i + 2));
+    ASSERT_NEAR(plain.distance(p), cgal.distance(p), 1e-12) << p.transpose();
+    ASSERT_NEAR((plain.closest_point(p) - p).norm(), cgal.distance(p), 1e-12) << p.transpose();
+    ASSERT_NEAR(plain.distance(p, sphere.points[i % sphere.points.size()]), cgal.distance(p),
+                1e-12);
+  }
+  // Points nearest the degenerate face: on its segment.
+  const Vector3d mid = 0.5 * (sphere.points[f[0]] + sphere.points[f[1]]);
+  for (const Vector3d& p : {Vector3d(1.3 * mid), Vector3d(0.7 * mid)})
+    EXPECT_NEAR(plain.distance(p), cgal.distance(p), 1e-12);
 }
 
 TEST(Skeletonize, RefusesOpenNonManifoldEmptyFlatAndBrokenMeshes) {

@@ -16,8 +16,13 @@ namespace mg::skeletonize {
 /// over its triangles). Immutable after construction; queries are thread-safe.
 class SolidQuery {
  public:
+  /// How distances and closest points are computed: `cgal`, CGAL's filtered predicates and
+  /// projection (what the poles' clamped radii have always used); `plain`, plain doubles
+  /// (core/detail/plain_distance_traits.h), several times faster on flat meshes and equal up to
+  /// the last bits; it builds a second tree.
+  enum class Distances { cgal, plain };
   /// @pre a closed mesh (polygons are fan-triangulated), indices in range
-  explicit SolidQuery(const PolygonSoup& mesh);
+  explicit SolidQuery(const PolygonSoup& mesh, Distances distances = Distances::cgal);
   ~SolidQuery();
   SolidQuery(const SolidQuery&) = delete;
   SolidQuery& operator=(const SolidQuery&) = delete;
