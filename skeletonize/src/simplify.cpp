@@ -835,33 +835,42 @@ class Simplifier {
           slabs.push_back(garbing::make_slab(m, u, w, 0, 1, 2));
       }
     double worst = 0;
-    for (int side : {a, b})
-      for (std::size_t i = 0; i < samples_of_[side].size(); ++i) {
-        const int k = samples_of_[side][i];
-        const Vec3& s = samples_[k];
-        double d = INFINITY;
-        for (const MedialAtom& ball : balls) {
-          if (!record && d <= worst) break;
-          d = std::min(d, (s - ball.centre).norm() - ball.radius);
-        }
-        for (const garbing::Cone& cone : cones) {
-          if (!record && d <= worst) break;
-          d = std::min(d, garbing::hull_distance(cone, s));
-        }
-        for (const garbing::Slab& slab : slabs) {
-          if (!record && d <= worst) break;
-          d = std::min(d, garbing::slab_distance(slab, s));
-        }
-        if (record) {
-          (*record)[k] = d;
-          continue;
-        }
-        worst = std::max(worst, d);
-        if (worst > over) {
-          if (culprit) *culprit = {side, i};
-          return worst;
-        }
+    // Both lists' fronts first (each the sample that blocked its atom's last refused collapse),
+    // then the rest of a's, then of b's.
+    const std::size_t na = samples_of_[a].size(), nb = a == b ? 0 : samples_of_[b].size();
+    auto at = [&](std::size_t j) -> std::pair<int, std::size_t> {
+      if (na == 0 || nb == 0) return {na > 0 ? a : b, j};
+      if (j < 2) return {j == 0 ? a : b, 0};
+      return j - 1 < na ? std::pair<int, std::size_t>{a, j - 1}
+                        : std::pair<int, std::size_t>{b, j - na};
+    };
+    for (std::size_t j = 0; j < na + nb; ++j) {
+      const auto [side, i] = at(j);
+      const int k = samples_of_[side][i];
+      const Vec3& s = samples_[k];
+      double d = INFINITY;
+      for (const MedialAtom& ball : balls) {
+        if (!record && d <= worst) break;
+        d = std::min(d, (s - ball.centre).norm() - ball.radius);
       }
+      for (const garbing::Cone& cone : cones) {
+        if (!record && d <= worst) break;
+        d = std::min(d, garbing::hull_distance(cone, s));
+      }
+      for (const garbing::Slab& slab : slabs) {
+        if (!record && d <= worst) break;
+        d = std::min(d, garbing::slab_distance(slab, s));
+      }
+      if (record) {
+        (*record)[k] = d;
+        continue;
+      }
+      worst = std::max(worst, d);
+      if (worst > over) {
+        if (culprit) *culprit = {side, i};
+        return worst;
+      }
+    }
     return worst;
   }
 
