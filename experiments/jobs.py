@@ -28,12 +28,17 @@ RENDER_THREADS = ("--threads", 1)
 
 def skeleton_args(model, kind):
     """skeletonize options for an atom set: 'paper' (vertex poles as they come), 'topology' (the
-    documented sampling, clamped when that keeps the topology), 'dense' (clamped + 20k)."""
+    documented sampling, clamped when that keeps the topology), 'simplify' (the sampling
+    `skeletonize --simplify` starts from: the model's "simplify" entry, else 'topology'),
+    'dense' (clamped + 20k)."""
     if kind == "paper":
         return []
     s = model["skeleton"]
+    if kind == "simplify":
+        s = model.get("simplify", s)
+        kind = "topology"
     if kind == "topology":
-        return ["--samples", s["samples"]] + (["--clamp-radius"] if s["clamp"] else [])
+        return ["--samples", str(s["samples"])] + (["--clamp-radius"] if s["clamp"] else [])
     return ["--samples", "20000", "--clamp-radius"]
 
 

@@ -2,7 +2,7 @@
 """Simplified medial meshes: each reference model's poles collapsed to 1 %, 2 % and 5 % of their
 count (at least 50 atoms) by `skeletonize --simplify`, measured as envelopes and garbed.
 
-For each model (the documented sampling of experiments/models.json, as the `topology` atom set)
+For each model (the sampling of experiments/models.json's "simplify" entry, else its skeleton's)
 and each fraction: the simplified medial mesh's atoms, edges and faces, collapses and refusals,
 seconds; H(G, O), two-sided, between its envelope G (balls, cones, slabs) and the original O
 (`evaluate atoms --primitives ma`); M2 garbed from it (`garb`, the envelope), its components
@@ -50,7 +50,7 @@ def simplify_job(build, work, name, fractions=FRACTIONS, poles_row=True):
     model = H.models_by_name()[name]
     original = R.model(name)
     info = R.run("models", "info", original, "--json")
-    sampling = J.skeleton_args(model, "topology")
+    sampling = J.skeleton_args(model, "simplify")
     # The poles alone, garbed as Table 1 garbs them: the reference.
     poles = R.path(name, "simplify_poles.ma")
     sk = R.run_stats("skeletonize", original, "-o", poles, *sampling,
@@ -156,7 +156,8 @@ def main(argv):
         " --quick" if args.quick and not args.models else "")
     text = (
         "# Simplified medial meshes (`skeletonize --simplify`)\n\n"
-        "Each model's poles (the documented sampling of experiments/models.json, with their "
+        "Each model's poles (the sampling of experiments/models.json's \"simplify\" entry, else "
+        "its skeleton's, with their "
         "regular-triangulation connectivity) collapsed to 1, 2 and 5 %% of their count, at least "
         "%d atoms, by spherical quadric error times the stability ratio "
         "(docs/algorithm.md \"Simplification\"). G: the simplified medial mesh's envelope (balls, "

@@ -3,11 +3,15 @@
 // Default mesh: the reference bumpy torus (126 x 126 grid, 15,876 vertices). Cases: its
 // vertices as samples; vertices plus random face points up to 100,000 samples (the issue's
 // target: under 3 s on 2 cores); each at 1 and 2 threads (same run: compare the ratio). Then
-// union_topology of the vertex skeleton's atoms.
+// union_topology of the vertex skeleton's atoms. Then simplify_medial_mesh of the vertex poles
+// with connectivity (--merge-tol 0 --clamp-radius: 15,772 poles on the bumpy torus) down to
+// 100, 300, 1,000 and 3,000 atoms at 2 threads, and 300 at 1 (issue 19's target: 300 in under
+// 2 s on 2 cores); counters: the phases' seconds.
 #include "core/errors.h"
 #include "core/mesh_io.h"
 #include "core/shapes.h"
 #include "skeletonize/poles.h"
+#include "skeletonize/simplify.h"
 #include "skeletonize/union_topology.h"
 
 #include <tbb/global_control.h>
@@ -51,6 +55,30 @@ void union_topology(benchmark::State& state) {
   state.counters["atoms"] = static_cast<double>(atoms.atoms.size());
 }
 
+/// Args: target atoms, threads. The skeleton is built once, outside the timing.
+void simplify(benchmark::State& state) {
+  static const mg::skeletonize::Skeleton skeleton = [] {
+    mg::skeletonize::SkeletonOptions opt;
+    opt.merge_tol = 0;
+    opt.clamp_radius = true;
+    opt.connectivity = true;
+    return mg::skeletonize::skeletonize(g_mesh, opt, "bench");
+  }();
+  mg::skeletonize::SimplifyOptions opt;
+  opt.target_atoms = static_cast<std::size_t>(state.range(0));
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                            static_cast<std::size_t>(state.range(1)));
+  mg::skeletonize::SimplifyStats stats;
+  for (auto _ : state)
+    stats = mg::skeletonize::simplify_medial_mesh(g_mesh, skeleton.atoms, skeleton.cells, opt,
+                                                  skeleton.samples, skeleton.atom_of_sample)
+                .stats;
+  state.counters["poles"] = static_cast<double>(stats.atoms_before);
+  state.counters["atoms"] = static_cast<double>(stats.atoms_after);
+  state.counters["setup_s"] = stats.seconds_setup;
+  state.counters["collapse_s"] = stats.seconds_collapse;
+}
+
 BENCHMARK(skeletonize)
     ->ArgNames({"samples", "threads"})
     ->Args({0, 1})
@@ -60,6 +88,15 @@ BENCHMARK(skeletonize)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(union_topology)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(simplify)
+    ->ArgNames({"atoms", "threads"})
+    ->Args({100, 2})
+    ->Args({300, 2})
+    ->Args({1000, 2})
+    ->Args({3000, 2})
+    ->Args({300, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 
