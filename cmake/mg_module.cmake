@@ -69,3 +69,24 @@ function(mg_add_python_test name)
   add_test(NAME ${name}
     COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/${A_SCRIPT} ${A_ARGS})
 endfunction()
+
+# mg_add_fuzz_target(<name> SOURCES ... SEEDS <folder> LIBS ...) (MG_FUZZ, clang): a libFuzzer
+# program in <build>/fuzz/, and a CTest entry (label `fuzz`) running it for MG_FUZZ_RUNS inputs
+# from the seeds in <folder> (relative to this module) through core/fuzz/run_fuzz.cmake: a
+# fresh <build>/fuzz/corpus/<name>/ each run, findings in <build>/fuzz/artifacts/<name>/.
+# Long runs: docs/testing.md.
+function(mg_add_fuzz_target name)
+  cmake_parse_arguments(A "" "SEEDS" "SOURCES;LIBS" ${ARGN})
+  set(fuzz_dir ${PROJECT_BINARY_DIR}/fuzz)
+  add_executable(${name} ${A_SOURCES})
+  target_link_libraries(${name} PRIVATE ${A_LIBS})
+  target_link_options(${name} PRIVATE -fsanitize=fuzzer)
+  mg_set_warnings(${name})
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${fuzz_dir})
+  add_test(NAME ${name}
+    COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:${name}> -DCORPUS=${fuzz_dir}/corpus/${name}
+            -DSEEDS=${CMAKE_CURRENT_SOURCE_DIR}/${A_SEEDS} -DRUNS=${MG_FUZZ_RUNS}
+            -DARTIFACTS=${fuzz_dir}/artifacts/${name}
+            -P ${PROJECT_SOURCE_DIR}/core/fuzz/run_fuzz.cmake)
+  set_tests_properties(${name} PROPERTIES LABELS fuzz)
+endfunction()

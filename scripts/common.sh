@@ -52,7 +52,8 @@ mg_build_fuzz() {
   [ "${CI:-}" = "true" ] && extra+=(-DMG_WERROR=ON)
   cmake -S . -B "$MG_FUZZ_DIR" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
     -DMG_FUZZ=ON -DPython3_EXECUTABLE="$MG_PYTHON" "${extra[@]}"
-  cmake --build "$MG_FUZZ_DIR" --parallel "$(nproc)" --target fuzz_ma fuzz_off fuzz_obj fuzz_ply fuzz_stl
+  cmake --build "$MG_FUZZ_DIR" --parallel "$(nproc)" \
+    --target fuzz_ma fuzz_off fuzz_obj fuzz_ply fuzz_stl fuzz_view
 }
 
 mg_build() {

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -45,11 +46,14 @@ double number_field(const nlohmann::json& j, const char* key, const std::string&
 int size_field(const nlohmann::json& j, const char* key, const std::string& name) {
   if (!j.contains(key) || !j.at(key).is_number_integer())
     throw InvalidInput(name + ": \"" + key + "\" must be an integer");
-  const auto value = j.at(key).get<long long>();
-  if (value < 1 || value > 16384)
-    throw InvalidInput(name + ": \"" + key + "\" must be in [1, 16384], got " +
-                       std::to_string(value));
-  return static_cast<int>(value);
+  const nlohmann::json& v = j.at(key);
+  // Integers above 2^63 are stored unsigned: read as signed they would wrap.
+  const bool in_range = v.is_number_unsigned()
+                            ? v.get<std::uint64_t>() >= 1 && v.get<std::uint64_t>() <= 16384
+                            : v.get<std::int64_t>() >= 1 && v.get<std::int64_t>() <= 16384;
+  if (!in_range)
+    throw InvalidInput(name + ": \"" + key + "\" must be in [1, 16384], got " + v.dump());
+  return v.get<int>();
 }
 
 }  // namespace
@@ -155,29 +159,32 @@ Eigen::Vector3d project(const View& view, const Eigen::Vector3d& point) {
   return {(x + 1) / 2 * view.width, (1 - y) / 2 * view.height, depth};
 }
 
-View read_view(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError(path + ": cannot open for reading");
+View parse_view(std::istream& in, const std::string& name) {
   nlohmann::json j;
   try {
-    in >> j;
+    j = nlohmann::json::parse(in);  // strict: nothing but white space after the object
   } catch (const nlohmann::json::exception& e) {
-    throw InvalidInput(path + ": not a JSON view file (" + std::string(e.what()) + ")");
+    throw InvalidInput(name + ": not a JSON view file (" + std::string(e.what()) + ")");
   }
-  if (!j.is_object()) throw InvalidInput(path + ": a view file holds one JSON object");
+  if (!j.is_object()) throw InvalidInput(name + ": a view file holds one JSON object");
   View view;
-  view.location = vector_field(j, "location", path);
-  view.look_at = vector_field(j, "look_at", path);
-  view.sky = vector_field(j, "sky", path);
-  view.angle = number_field(j, "angle", path);
-  view.width = size_field(j, "width", path);
-  view.height = size_field(j, "height", path);
-  validate(view, path);
+  view.location = vector_field(j, "location", name);
+  view.look_at = vector_field(j, "look_at", name);
+  view.sky = vector_field(j, "sky", name);
+  view.angle = number_field(j, "angle", name);
+  view.width = size_field(j, "width", name);
+  view.height = size_field(j, "height", name);
+  validate(view, name);
   return view;
 }
 
-void write_view(const View& view, const std::string& path) {
-  validate(view, path);
+View read_view(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(path + ": cannot open for reading");
+  return parse_view(in, path);
+}
+
+void format_view(std::ostream& out, const View& view) {
   nlohmann::ordered_json j;
   auto array = [](const Eigen::Vector3d& v) {
     return nlohmann::json::array({v.x(), v.y(), v.z()});
@@ -188,7 +195,12 @@ void write_view(const View& view, const std::string& path) {
   j["angle"] = view.angle;
   j["width"] = view.width;
   j["height"] = view.height;
-  write_file_atomically(path, [&](std::ostream& out) { out << std::setw(2) << j << '\n'; });
+  out << std::setw(2) << j << '\n';
+}
+
+void write_view(const View& view, const std::string& path) {
+  validate(view, path);
+  write_file_atomically(path, [&](std::ostream& out) { format_view(out, view); });
 }
 
 }  // namespace mg::render

@@ -118,6 +118,11 @@ TEST(ViewFile, BadFilesAreRefusedByName) {
       {R"({"location": [0, 0, 0], "angle": 30, )" + ok + "}", "location and look_at coincide"},
       {R"({"location": [0, 5, 0], "angle": 30, )" + ok + "}", "sky is parallel"},
       {R"({"location": [0, 0, 5], "angle": 0, )" + ok + "}", "angle must be in (0, 180)"},
+      // Nothing may follow the object; an integer above 2^63 is not read as a wrapped -1.
+      {R"({"location": [0, 0, 5], "angle": 30, )" + ok + "} {}", "not a JSON view file"},
+      {R"({"location": [0, 0, 5], "angle": 30, "look_at": [0, 0, 0], "sky": [0, 1, 0], )"
+       R"("width": 18446744073709551615, "height": 6})",
+       "\"width\" must be in [1, 16384], got 18446744073709551615"},
   };
   for (const auto& [text, message] : cases) {
     const std::string path = dir.write("v.json", text);
@@ -125,8 +130,9 @@ TEST(ViewFile, BadFilesAreRefusedByName) {
       mg::render::read_view(path);
       ADD_FAILURE() << "accepted: " << text;
     } catch (const mg::InvalidInput& e) {
-      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
       EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -54,12 +55,22 @@ View frame_view(const Eigen::AlignedBox3d& box, int width, int height,
 /// @throws InvalidInput naming the first problem
 void validate(const View& view, const std::string& name);
 
-/// Reads a view written by write_view() (JSON: location, look_at, sky, angle, width, height).
+/// Parses a view file's text (one JSON object: location, look_at, sky, angle, width, height;
+/// nothing but white space after it) and validates it.
+/// @param name used in messages: `name: problem`, one line
+/// @throws InvalidInput if the text is not such an object or the view is invalid
+View parse_view(std::istream& in, const std::string& name);
+
+/// Reads a view written by write_view() (see parse_view).
 /// @throws IoError if the file cannot be opened; InvalidInput if it is malformed or invalid
 View read_view(const std::string& path);
 
-/// Writes a view as JSON (17 significant digits: reads back exactly) through a temporary file
-/// renamed at the end.   @throws IoError
+/// Formats a view as write_view() writes it: JSON, 17 significant digits (parse_view() reads it
+/// back exactly).
+void format_view(std::ostream& out, const View& view);
+
+/// Writes a view (format_view) through a temporary file renamed at the end.
+/// @throws InvalidInput if the view is invalid; IoError
 void write_view(const View& view, const std::string& path);
 
 /// Pixel coordinates (x right, y down, pixel centres at +0.5) where `point` appears in the
