@@ -62,6 +62,8 @@ void check_output_path(const std::string& output, const std::vector<std::string>
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
     throw InvalidInput(output + ": output folder '" + dir.string() + "' does not exist");
+  // Renaming the finished file onto a folder would fail only after all the work.
+  if (fs::is_directory(out, ec)) throw InvalidInput(output + ": output path is a folder");
   for (const std::string& in : inputs) {
     if (fs::exists(out, ec) && fs::exists(in, ec) && fs::equivalent(out, in, ec))
       throw InvalidInput(output + ": output would overwrite the input " + in);

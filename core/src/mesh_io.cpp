@@ -324,21 +324,24 @@ PolygonSoup read_polygon_soup(const std::string& path) {
 
 Mesh read_mesh(const std::string& path) { return mesh_from_soup(read_polygon_soup(path), path); }
 
-void write_polygon_soup(const PolygonSoup& soup, const std::string& path) {
+void format_polygon_soup(std::ostream& out, const PolygonSoup& soup, const std::string& path) {
   if (!has_mesh_extension(path)) throw InvalidInput(path + ": " + kUnknownExtension);
   const std::string ext = file_extension(path);
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.precision(17);
-    if (ext == ".off") {
-      write_off(out, soup);
-    } else if (ext == ".obj") {
-      write_obj(out, soup);
-    } else if (ext == ".ply") {
-      write_ply(out, soup);
-    } else {
-      write_stl(out, soup);
-    }
-  });
+  out.precision(17);
+  if (ext == ".off") {
+    write_off(out, soup);
+  } else if (ext == ".obj") {
+    write_obj(out, soup);
+  } else if (ext == ".ply") {
+    write_ply(out, soup);
+  } else {
+    write_stl(out, soup);
+  }
+}
+
+void write_polygon_soup(const PolygonSoup& soup, const std::string& path) {
+  if (!has_mesh_extension(path)) throw InvalidInput(path + ": " + kUnknownExtension);
+  write_file_atomically(path, [&](std::ostream& out) { format_polygon_soup(out, soup, path); });
 }
 
 void write_mesh(const Mesh& mesh, const std::string& path) {

@@ -221,8 +221,17 @@ int garb_main(int argc, char** argv) {
 
   const std::vector<std::string> inputs = {input};
   mg::check_mesh_output_path(output, inputs);
-  if (!m1_path.empty()) mg::check_mesh_output_path(m1_path, inputs);
-  if (!stats_path.empty()) mg::check_output_path(stats_path, inputs);
+  if (!m1_path.empty()) {
+    mg::check_mesh_output_path(m1_path, inputs);
+    if (mg::same_file(m1_path, output))
+      throw mg::InvalidInput(m1_path + ": --m1 names the output file");
+  }
+  if (!stats_path.empty()) {
+    mg::check_output_path(stats_path, inputs);
+    for (const std::string& other : {output, m1_path})
+      if (!other.empty() && mg::same_file(stats_path, other))
+        throw mg::InvalidInput(stats_path + ": --stats names the mesh file " + other);
+  }
   for (int k : off) opt.octree.criteria[k - 1] = false;
   opt.cones.source = spheres_only ? gb::ConeSource::none : gb::parse_cone_source(cones);
   opt.primitives = gb::parse_primitive_set(primitives);
@@ -259,14 +268,22 @@ int garb_main(int argc, char** argv) {
     check = TopologyCheck{mg::skeletonize::union_topology(atoms), m2.components, m2.euler, 0};
     check->seconds = check_clock.seconds();
   }
-  mg::Stopwatch write_clock;
-  if (!m1_path.empty()) mg::write_mesh(result.m1.mesh, m1_path);
-  mg::write_mesh(result.m2.mesh, output);
-  const double seconds_write = write_clock.seconds();
-  if (!stats_path.empty())
-    mg::write_json(stats_json(input, atoms, result, opt, off, cones, check, seconds_read,
-                              seconds_write, clock.seconds()),
-                   stats_path);
+  // M1, M2 and the statistics appear together or not at all ("write" times the meshes).
+  const mg::Stopwatch write_clock;
+  mg::write_files_together(
+      {{m1_path,
+        [&](std::ostream& out) {
+          mg::format_polygon_soup(out, mg::soup_from_mesh(result.m1.mesh), m1_path);
+        }},
+       {output,
+        [&](std::ostream& out) {
+          mg::format_polygon_soup(out, mg::soup_from_mesh(result.m2.mesh), output);
+        }},
+       {stats_path, [&](std::ostream& out) {
+          const double seconds_write = write_clock.seconds();
+          mg::print_json(out, stats_json(input, atoms, result, opt, off, cones, check, seconds_read,
+                                         seconds_write, clock.seconds()));
+        }}});
   // The promise (M2 has the union's topology) may break: say so, in one line each.
   if (result.tree.hit_max_depth)
     std::cerr << "garb: warning: " << input << ": the octree's depth stop (level "

@@ -171,6 +171,24 @@ class GarbCli(U.CliTestCase):
         self.assertEqual(r.returncode, 2)
         self.assertEqual(open(self.ma).read(), "1 0 0\nv 0 0 0 1\n")
 
+    def test_outputs_appear_together_or_not_at_all(self):
+        # Issue 21: M1 was renamed into place before M2 and the statistics were written, and
+        # stayed when they failed. /proc/self takes no new file, even from root.
+        m1, m2 = self.path("m1.off"), self.path("m2.off")
+        r = run(self.ma, "-o", m2, "--m1", m1, "--stats", "/proc/self/s.json")
+        self.assert_refused(r, 3, "/proc/self/s.json: cannot open for writing", [m1, m2])
+        r = run(self.ma, "-o", "/proc/self/m2.off", "--m1", m1, "--stats", self.path("s.json"))
+        self.assert_refused(r, 3, "/proc/self/m2.off: cannot open for writing", [m1, self.path("s.json")])
+
+    def test_output_naming_a_folder_or_another_output(self):
+        os.mkdir(self.path("d.off"))
+        r = run(self.ma, "-o", self.path("d.off"))
+        self.assert_refused(r, 2, "d.off: output path is a folder")
+        r = run(self.ma, "-o", self.path("m.off"), "--m1", self.path("m.off"))
+        self.assert_refused(r, 2, "m.off: --m1 names the output file", [self.path("m.off")])
+        r = run(self.ma, "-o", self.path("m.off"), "--stats", self.path("m.off"))
+        self.assert_refused(r, 2, "--stats names the mesh file", [self.path("m.off")])
+
     def test_unknown_output_extension(self):
         r = run(self.ma, "-o", self.path("m.vtk"))
         self.assert_refused(r, 2, "unknown mesh extension", [self.path("m.vtk")])

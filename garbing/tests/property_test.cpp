@@ -4,22 +4,37 @@
 // intersecting or degenerate triangle, every vertex within one leaf side of G, one outer shell
 // per component of the union of the balls (unless the depth stop fired), and, every fifth case,
 // the same M2 at 1 and 2 threads. Euler characteristics that differ from the union's are
-// counted by kind, not failed: random blobs hold cavities and tunnels far below a leaf.
-// MG_PROPERTY_CASES (default 500) sets the count: a long run is documented in the README.
+// counted by kind, not failed: random blobs hold cavities and tunnels far below a leaf. Every
+// tenth case is also given to the garb program in a run made to fail (a bad atom, a missing or
+// unwritable output folder, an output naming the input or a folder): exit code, one line naming
+// the file, and no output or temporary file left.
+// MG_PROPERTY_CASES (default 500) sets the count: a long run is documented in docs/testing.md.
 #include "core/mesh.h"
 #include "core/mesh_topology.h"
 #include "garbing/garb.h"
 #include "skeletonize/union_topology.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
+#include <set>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include "test_util.h"
 
 namespace {
 
@@ -140,6 +155,110 @@ int outer_shells(const mg::PolygonSoup& m) {
   return outer;
 }
 
+/// The garb program's exit code and what it wrote to stderr.
+struct ProgramRun {
+  int code = -1;
+  std::string err;
+};
+
+ProgramRun run_garb(const std::vector<std::string>& args) {
+  std::string command = "'" MG_GARB "'";
+  for (const std::string& a : args) command += " '" + a + "'";
+  command += " 2>&1 >/dev/null";
+  ProgramRun r;
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  char buffer[512];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+    r.err.append(buffer, n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+/// A folder that takes no new file: a read-only one, or /proc/self where root writes anyway.
+std::string unwritable_folder(const mg_test::TempDir& dir) {
+  const std::string ro = dir.file("read_only");
+  std::filesystem::create_directory(ro);
+  ::chmod(ro.c_str(), 0555);
+  if (!std::ofstream(ro + "/probe")) return ro;
+  std::filesystem::remove(ro + "/probe");
+  return "/proc/self";
+}
+
+std::set<std::string> folder_entries(const std::string& folder) {
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    names.insert(entry.path().filename().string());
+  return names;
+}
+
+/// The ways a run is made to fail, one per tenth case in turn.
+const char* const kFailures[] = {"nan_radius",      "negative_radius",  "missing_folder",
+                                 "output_is_input", "output_is_folder", "unwritable_stats"};
+constexpr int kFailureCount = 6;
+
+/// Runs garb on the atoms (as a .ma file) with M2, --m1 and --stats in a fresh folder, made to
+/// fail the way `failure` says. The run must exit 2 (3 for a write failure) with one stderr line
+/// naming the file, leave no output or temporary file (the output folder as before), and leave
+/// the input as it was.
+void check_failing_run(const mg::MedialSurface& atoms, int failure, std::mt19937_64& gen) {
+  SCOPED_TRACE(std::string("failing run: ") + kFailures[failure]);
+  const mg_test::TempDir dir("property_fail");
+  std::filesystem::create_directory(dir.file("in"));
+  std::filesystem::create_directory(dir.file("out"));
+  const std::size_t bad = gen() % atoms.atoms.size();
+  std::ostringstream text;
+  text.precision(17);
+  text << atoms.atoms.size() << " 0 0\n";
+  for (std::size_t i = 0; i < atoms.atoms.size(); ++i) {
+    const auto& a = atoms.atoms[i];
+    text << "v " << a.centre.x() << ' ' << a.centre.y() << ' ' << a.centre.z() << ' ';
+    if (i == bad && failure == 0)
+      text << "nan";
+    else if (i == bad && failure == 1)
+      text << -a.radius;
+    else
+      text << a.radius;
+    text << '\n';
+  }
+  const std::string input = dir.write("in/case.ma", text.str());
+  std::string m2 = dir.file("out/m2.off"), stats = dir.file("out/stats.json");
+  std::string named = input;   // the file the message must name
+  std::set<std::string> left;  // what the output folder holds before and after
+  int code = 2;
+  switch (failure) {
+    case 2:
+      named = m2 = dir.file("out/missing/m2.off");
+      break;
+    case 3:
+      named = m2 = input;
+      break;
+    case 4:
+      std::filesystem::create_directory(m2);
+      left = {"m2.off"};
+      named = m2;
+      break;
+    case 5:
+      named = stats = unwritable_folder(dir) + "/stats.json";
+      code = 3;
+      break;
+    default:
+      break;
+  }
+  const ProgramRun r = run_garb({input, "-o", m2, "--m1", dir.file("out/m1.ply"), "--stats", stats,
+                                 "--max-depth", "10", "--threads", "1"});
+  EXPECT_EQ(r.code, code) << r.err;
+  EXPECT_EQ(r.err.rfind("garb: ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.back(), '\n') << r.err;
+  EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
+  EXPECT_EQ(folder_entries(dir.file("out")), left);
+  EXPECT_EQ(folder_entries(dir.file("in")), std::set<std::string>{"case.ma"});
+  std::ifstream in(input);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), text.str());
+}
+
 int case_count() {
   const char* env = std::getenv("MG_PROPERTY_CASES");
   return env ? std::max(1, std::atoi(env)) : 500;
@@ -148,7 +267,8 @@ int case_count() {
 TEST(GarbingProperties, RandomUnionsOfBalls) {
   const int cases = case_count();
   std::map<std::string, int> euler_differs;  // by kind
-  int depth_stops = 0;
+  int depth_stops = 0, failing_runs = 0;
+  double failing_seconds = 0;
   for (int index = 0; index < cases; ++index) {
     std::string kind;
     const mg::MedialSurface atoms = random_union(index, kind);
@@ -192,6 +312,14 @@ TEST(GarbingProperties, RandomUnionsOfBalls) {
       EXPECT_EQ(one.faces, two.faces);
       EXPECT_EQ(one.points, two.points);
     }
+    if (index % 10 == 3) {
+      const auto start = std::chrono::steady_clock::now();
+      std::mt19937_64 gen(static_cast<unsigned long long>(index));
+      check_failing_run(atoms, (index / 10) % kFailureCount, gen);
+      ++failing_runs;
+      failing_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
     if (HasFailure()) break;  // the first failing case, named, is enough
   }
   std::printf(
@@ -199,7 +327,7 @@ TEST(GarbingProperties, RandomUnionsOfBalls) {
       "union's (cavities or tunnels below a leaf), by kind:",
       cases, depth_stops);
   for (const auto& [kind, n] : euler_differs) std::printf(" %s %d", kind.c_str(), n);
-  std::printf("\n");
+  std::printf("\n%d garb runs made to fail, %.1f s\n", failing_runs, failing_seconds);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write);
 
 /// @throws InvalidInput if `output` names the same file as one of `inputs` (never overwrite an
-/// input), or if `output`'s folder does not exist.
+/// input), names a folder, or if `output`'s folder does not exist.
 void check_output_path(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace mg

@@ -21,6 +21,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace mg {
@@ -115,20 +116,31 @@ struct OutputFile {
 
 /// Writes files that appear together or not at all (a result and its --stats report): each is
 /// written to a temporary file beside its target, then all are renamed, in the order given.
-/// An exception while writing any of them leaves none.
+/// An exception while writing any of them leaves none; so does a failed rename, which removes
+/// the files of this call already renamed (a file they replaced is lost, as on success).
 /// @throws IoError naming the target that cannot be opened, written or moved into place
 inline void write_files_together(const std::vector<OutputFile>& files) {
   std::vector<std::unique_ptr<AtomicFile>> written;
+  std::vector<std::string> targets;
   for (const OutputFile& file : files) {
     if (file.path.empty()) continue;
     written.push_back(std::make_unique<AtomicFile>(file.path));
+    targets.push_back(file.path);
     std::ofstream out(written.back()->temp_path(), std::ios::binary);
     if (!out) throw IoError(file.path + ": cannot open for writing");
     file.write(out);
     out.flush();
     if (!out) throw IoError(file.path + ": write failed");
   }
-  for (const auto& file : written) file->commit();
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    try {
+      written[i]->commit();
+    } catch (const IoError&) {
+      std::error_code ignored;
+      for (std::size_t k = 0; k < i; ++k) std::filesystem::remove(targets[k], ignored);
+      throw;
+    }
+  }
 }
 
 }  // namespace mg

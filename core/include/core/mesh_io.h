@@ -5,6 +5,7 @@
 
 #include "core/mesh.h"
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,13 @@ PolygonSoup read_polygon_soup(const std::string& path);
 /// read_polygon_soup() then mesh_from_soup(): refuses non-manifold input, naming the element.
 Mesh read_mesh(const std::string& path);
 
-/// Writes a soup by extension (ASCII, 17 significant digits: doubles round-trip exactly), through
-/// a temporary file renamed at the end. STL holds triangles only: polygons are fan-triangulated.
+/// Formats a soup as the file `path` (by its extension): ASCII, 17 significant digits (doubles
+/// round-trip exactly). STL holds triangles only: polygons are fan-triangulated.
+/// @param out  a stream opened in binary mode
+/// @throws InvalidInput for an unknown extension
+void format_polygon_soup(std::ostream& out, const PolygonSoup& soup, const std::string& path);
+
+/// Writes a soup (format_polygon_soup) through a temporary file renamed at the end.
 /// @throws InvalidInput for an unknown extension; IoError if writing fails
 void write_polygon_soup(const PolygonSoup& soup, const std::string& path);
 
