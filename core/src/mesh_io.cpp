@@ -1,5 +1,7 @@
 #include "core/mesh_io.h"
 
+#include "ply_check.h"
+
 #include "core/atomic_file.h"
 #include "core/errors.h"
 
@@ -251,59 +253,6 @@ void check_mesh_output_path(const std::string& output, const std::vector<std::st
   if (!has_mesh_extension(output)) throw InvalidInput(output + ": " + kUnknownExtension);
 }
 
-namespace {
-
-/// A PLY header's lines, checked before CGAL's reader sees them, which has undefined behaviour
-/// (found by fuzz_ply) on a `property` line before any `element` line (read out of an empty
-/// vector), on coordinates x, y, z that are not float or double, and on vertex indices that
-/// are not a list of integers (a null pointer from a failed cast).
-void check_ply_header(std::istream& in, const std::string& path) {
-  std::string text;
-  int line = 0;
-  bool element = false;
-  auto fail = [&](const std::string& problem) {
-    throw InvalidInput(path + ":" + std::to_string(line) + ": " + problem);
-  };
-  while (std::getline(in, text)) {
-    ++line;
-    std::istringstream words(text);
-    std::string keyword;
-    words >> keyword;
-    if (line == 1) {
-      if (keyword != "ply") fail("expected the PLY magic 'ply'");
-      continue;
-    }
-    if (keyword == "end_header") return;
-    if (keyword == "element") {
-      element = true;
-    } else if (keyword == "property") {
-      if (!element) fail("a property before any element");
-      std::string type, name;
-      words >> type;
-      const bool list = type == "list";
-      std::string count_type, item_type;
-      if (list) words >> count_type >> item_type;
-      words >> name;
-      static const char* reals[] = {"float", "float32", "double", "float64"};
-      static const char* integers[] = {"char",   "int8",   "uchar", "uint8", "short", "int16",
-                                       "ushort", "uint16", "int",   "int32", "uint",  "uint32"};
-      auto one_of = [](const std::string& t, const auto& set) {
-        return std::find(std::begin(set), std::end(set), t) != std::end(set);
-      };
-      if ((name == "x" || name == "y" || name == "z") && (list || !one_of(type, reals)))
-        fail("coordinate '" + name + "' must be float or double, got '" + type + "'");
-      if ((name == "vertex_indices" || name == "vertex_index") &&
-          (!list || !one_of(count_type, integers) || !one_of(item_type, integers)))
-        fail("'" + name + "' must be a list of integers");
-    } else if (keyword != "format" && keyword != "comment" && keyword != "obj_info") {
-      fail("unknown PLY header keyword '" + keyword + "'");
-    }
-  }
-  fail("the header has no end_header");
-}
-
-}  // namespace
-
 PolygonSoup read_polygon_soup(const std::string& path) {
   if (!has_mesh_extension(path)) throw InvalidInput(path + ": " + kUnknownExtension);
   std::ifstream in(path, std::ios::binary);
@@ -312,7 +261,7 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   if (file_extension(path) == ".off") {
     soup = OffParser(in, path).parse();
   } else {
-    if (file_extension(path) == ".ply") check_ply_header(in, path);
+    if (file_extension(path) == ".ply") check_ply(in, path);
     in.close();
     if (!read_polygon_soup_with_cgal(path, soup))
       throw InvalidInput(path + ": malformed " + file_extension(path).substr(1) + " file");

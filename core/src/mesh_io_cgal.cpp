@@ -17,6 +17,7 @@ bool read_polygon_soup_with_cgal(const std::string& path, PolygonSoup& soup) {
   std::vector<std::vector<std::size_t>> polygons;
   // CGAL's readers size buffers by the file's own counts: a negative or huge list count (found
   // by fuzz_ply) throws length_error or bad_alloc from inside them. That is a malformed file.
+  // PLY counts are checked against the file's size first (check_ply); this stays a safety net.
   try {
     if (!CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false)))
       return false;

@@ -6,6 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <vector>
 
 #include "test_util.h"
 
@@ -128,7 +132,112 @@ TEST(MeshIo, RefusesBadFilesWithNameLineAndReason) {
                                              "property float z\nelement face 1\n"
                                              "property list int int vertex_indices\nend_header\n"
                                              "0 0 0\n1 0 0\n0 1 0\n-5 0 1 2\n")),
-      dir.file("l.ply") + ": malformed ply file");
+      dir.file("l.ply") + ": element 'face' row 0: list count -5 is negative");
+}
+
+/// A binary PLY: a header, then the body's bytes as written.
+std::string binary_ply(const std::string& format, const std::string& elements,
+                       const std::vector<unsigned char>& body) {
+  return "ply\nformat " + format + " 1.0\n" + elements + "end_header\n" +
+         std::string(body.begin(), body.end());
+}
+
+/// The bytes of a float and of an int32, little or big endian.
+void put(std::vector<unsigned char>& out, std::uint32_t bits, bool little) {
+  for (int i = 0; i < 4; ++i) out.push_back((bits >> (little ? 8 * i : 24 - 8 * i)) & 0xff);
+}
+void put_float(std::vector<unsigned char>& out, float f, bool little) {
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &f, 4);
+  put(out, bits, little);
+}
+
+/// The tetrahedron of core/fuzz/seeds/ply/tetra.ply, binary, faces as `list uchar int`.
+std::string binary_tetra(bool little) {
+  std::vector<unsigned char> body;
+  for (const auto& p : {std::array<float, 3>{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}})
+    for (float c : p) put_float(body, c, little);
+  for (const auto& f : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
+    body.push_back(3);
+    for (int v : f) put(body, static_cast<std::uint32_t>(v), little);
+  }
+  return binary_ply(little ? "binary_little_endian" : "binary_big_endian",
+                    "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 4\nproperty list uchar int vertex_indices\n",
+                    body);
+}
+
+TEST(MeshIo, BinaryPlyIsRead) {
+  mg_test::TempDir dir("mesh_io");
+  for (bool little : {true, false}) {
+    const mg::Mesh m = mg::read_mesh(dir.write("b.ply", binary_tetra(little)));
+    EXPECT_EQ(m.n_vertices(), 4u);
+    EXPECT_EQ(m.n_faces(), 4u);
+    EXPECT_TRUE(mg::mesh_topology(mg::soup_from_mesh(m)).closed);
+  }
+}
+
+// Issue 21: CGAL's PLY reader sizes its buffers by the file's counts: a 200-byte file made it
+// allocate up to 16 GB (out of memory under fuzz_ply). Counts are now checked against the
+// bytes left before CGAL reads them (core/fuzz/seeds/ply/found_*_count*.ply).
+TEST(MeshIo, Issue21PlyCountsMustFitInTheFile) {
+  mg_test::TempDir dir("mesh_io");
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  const std::string faces = "element face 1\nproperty list int int vertex_indices\n";
+  const std::string ascii = "ply\nformat ascii 1.0\n";
+  // A row count no body can hold (ASCII: 2 bytes a value at least; binary: the row's size).
+  EXPECT_EQ(read_error(dir.write(
+                "r.ply", ascii + "element vertex 2147483648\n" + xyz + "end_header\n0 0 0\n")),
+            dir.file("r.ply") +
+                ":3: element 'vertex' announces 2147483648 rows, but the 6 bytes left hold at "
+                "most 1");
+  EXPECT_EQ(read_error(dir.write(
+                "rb.ply", binary_ply("binary_little_endian", "element vertex 2147483648\n" + xyz,
+                                     std::vector<unsigned char>(24, 0)))),
+            dir.file("rb.ply") +
+                ":3: element 'vertex' announces 2147483648 rows, but the 24 bytes left hold at "
+                "most 2");
+  // A list count of 2^31 - 1: out of a uchar's range, past the end of the file, more items
+  // than bytes left.
+  const std::string tet = "0 0 0\n1 0 0\n0 1 0\n";
+  EXPECT_EQ(read_error(dir.write("u.ply", ascii + "element vertex 3\n" + xyz +
+                                              "element face 1\n"
+                                              "property list uchar int vertex_indices\n"
+                                              "end_header\n" +
+                                              tet + "2147483647 0 1 2\n")),
+            dir.file("u.ply") + ": element 'face' row 0: '2147483647' is not a uchar");
+  EXPECT_EQ(read_error(dir.write("a.ply", ascii + "element vertex 3\n" + xyz + faces +
+                                              "end_header\n" + tet + "2147483647 0 1 2\n")),
+            dir.file("a.ply") + ": the file ends in row 0 of element 'face' (1 announced)");
+  std::vector<unsigned char> body(36, 0);
+  put(body, 0x7fffffff, true);
+  for (int v : {0, 1, 2}) put(body, static_cast<std::uint32_t>(v), true);
+  EXPECT_EQ(
+      read_error(dir.write(
+          "b.ply", binary_ply("binary_little_endian", "element vertex 3\n" + xyz + faces, body))),
+      dir.file("b.ply") +
+          ": element 'face' row 0: list count 2147483647 needs 8589934588 bytes, 12 are left");
+  // A negative list count (the seed found_negative_list_count.ply), and a malformed count.
+  body.assign(36, 0);
+  body.push_back(0xff);
+  EXPECT_EQ(read_error(dir.write("n.ply", binary_ply("binary_big_endian",
+                                                     "element vertex 3\n" + xyz +
+                                                         "element face 1\n"
+                                                         "property list char int vertex_indices\n",
+                                                     body))),
+            dir.file("n.ply") + ": element 'face' row 0: list count -1 is negative");
+  EXPECT_EQ(read_error(dir.write("c.ply", ascii + "element vertex -1\n" + xyz + "end_header\n")),
+            dir.file("c.ply") +
+                ":3: expected 'element NAME COUNT', the count an integer from 0 to 2^64 - 1");
+  EXPECT_EQ(read_error(dir.write("t.ply", ascii + "element vertex 3\nproperty int64 x\n")),
+            dir.file("t.ply") + ":4: coordinate 'x' must be float or double, got 'int64'");
+  EXPECT_EQ(read_error(dir.write("q.ply", ascii + "element vertex 3\n" + xyz +
+                                              "property int64 quality\nend_header\n")),
+            dir.file("q.ply") + ":7: unknown PLY property type 'int64'");
+  EXPECT_EQ(read_error(dir.write("e.ply", ascii + "element vertex 3\nend_header\n")),
+            dir.file("e.ply") + ":3: element 'vertex' announces 3 rows but has no properties");
+  EXPECT_EQ(read_error(dir.write("f.ply", "ply\nformat binary_middle_endian 1.0\n")),
+            dir.file("f.ply") + ":2: unknown PLY format 'binary_middle_endian'");
 }
 
 TEST(MeshIo, NonManifoldInputIsRefusedNamingTheElement) {

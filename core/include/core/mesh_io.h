@@ -13,7 +13,8 @@ namespace mg {
 
 /// Reads the face list of a mesh file. OFF (also COFF/NOFF headers, colours ignored) is parsed
 /// here with line numbers in messages; OBJ, PLY and STL go through CGAL's polygon-soup readers
-/// (STL points are merged by exact coordinates).
+/// (STL points are merged by exact coordinates). A PLY file is checked first, header and body:
+/// known types, and every count within what the rest of the file can hold.
 /// @throws IoError if the file cannot be opened; InvalidInput if it is malformed, has an
 ///         unknown extension, an index out of range, a face with fewer than 3 or repeated
 ///         indices, a non-finite coordinate, or no face at all
