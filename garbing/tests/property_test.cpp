@@ -9,6 +9,9 @@
 // unwritable output folder, an output naming the input or a folder): exit code, one line naming
 // the file, and no output or temporary file left.
 // MG_PROPERTY_CASES (default 500) sets the count: a long run is documented in docs/testing.md.
+// MG_PROPERTY_CLASSIFY=N classes each Euler characteristic difference by the size of the
+// feature M2 misses (garbing the case again with leaves up to 2^N times smaller) and prints a
+// table.
 #include "core/mesh.h"
 #include "core/mesh_topology.h"
 #include "garbing/garb.h"
@@ -264,11 +267,65 @@ int case_count() {
   return env ? std::max(1, std::atoi(env)) : 500;
 }
 
+/// MG_PROPERTY_CLASSIFY=N (0 to 4; default 0, off): how many finer octrees a case whose Euler
+/// characteristic differs from the union's is garbed again with (see resolving_level).
+int classify_levels() {
+  const char* env = std::getenv("MG_PROPERTY_CLASSIFY");
+  return env ? std::clamp(std::atoi(env), 0, 4) : 0;
+}
+
+/// The size class of the feature (cavity or tunnel) M2 misses: the first k in 1..levels at
+/// which M2, garbed with leaves 2^k times smaller (min_depth d + k, the depth stop moved as
+/// far), has the union's Euler characteristic, i.e. the feature is between 2^-k and 2^(1-k)
+/// leaf sides of the first garbing; 0 if none has (smaller than 2^-levels).
+int resolving_level(const mg::MedialSurface& atoms, const mg::garbing::GarbOptions& opt,
+                    int min_depth, long union_euler, int levels) {
+  for (int k = 1; k <= levels; ++k) {
+    mg::garbing::GarbOptions finer = opt;
+    finer.octree.min_depth = min_depth + k;
+    finer.octree.max_depth = opt.octree.max_depth + k;
+    const mg::garbing::Garbing r = mg::garbing::garb(atoms, finer);
+    if (mg::mesh_topology(mg::soup_from_mesh(r.m2.mesh)).euler == union_euler) return k;
+  }
+  return 0;
+}
+
+/// The cases of one size class: how many, the Euler characteristic's differences read as
+/// tunnels (M2's larger by 2 each) and cavities (smaller by 2 each) missed, net, and the kinds.
+struct EulerClass {
+  int cases = 0;
+  long tunnels = 0, cavities = 0;
+  std::map<std::string, int> kinds;
+};
+
+/// The classes as a Markdown table (docs/testing.md).
+void print_classes(const std::map<int, EulerClass>& classes, int levels) {
+  std::printf(
+      "\n| feature size, leaf sides | cases | tunnels / cavities missed (net) | kinds |\n"
+      "|---|---|---|---|\n");
+  for (int i = 1; i <= levels + 1; ++i) {  // the largest features first, the unresolved last
+    const int k = i % (levels + 1);
+    if (!classes.count(k)) continue;
+    const EulerClass& c = classes.at(k);
+    const std::string size =
+        k == 0 ? "< 1/" + std::to_string(1 << levels)
+               : "1/" + std::to_string(1 << k) + " to " +
+                     (k == 1 ? std::string("1") : "1/" + std::to_string(1 << (k - 1)));
+    std::string kinds;
+    for (const auto& [kind, n] : c.kinds)
+      kinds += (kinds.empty() ? "" : ", ") + kind + " " + std::to_string(n);
+    std::printf("| %s | %d | %ld / %ld | %s |\n", size.c_str(), c.cases, c.tunnels, c.cavities,
+                kinds.c_str());
+  }
+}
+
 TEST(GarbingProperties, RandomUnionsOfBalls) {
   const int cases = case_count();
   std::map<std::string, int> euler_differs;  // by kind
   int depth_stops = 0, failing_runs = 0;
   double failing_seconds = 0;
+  const int levels = classify_levels();
+  std::map<int, EulerClass> classes;  // by resolving_level
   for (int index = 0; index < cases; ++index) {
     std::string kind;
     const mg::MedialSurface atoms = random_union(index, kind);
@@ -297,7 +354,23 @@ TEST(GarbingProperties, RandomUnionsOfBalls) {
     } else {
       // M2's shells: one outer shell per component of the union, the rest its cavities.
       EXPECT_EQ(outer_shells(m2), static_cast<int>(u.components));
-      if (topo.euler != u.euler) ++euler_differs[kind];
+      if (topo.euler != u.euler) {
+        ++euler_differs[kind];
+        if (levels > 0) {
+          const int k = resolving_level(atoms, opt, r.tree.min_depth, u.euler, levels);
+          EulerClass& c = classes[k];
+          ++c.cases;
+          ++c.kinds[kind];
+          const long difference = (topo.euler - u.euler) / 2;
+          (difference > 0 ? c.tunnels : c.cavities) += std::abs(difference);
+          std::printf(
+              "case %d (%s, %zu balls, leaf %.4g): Euler characteristic %ld, the union's %ld;"
+              " %s\n",
+              index, kind.c_str(), atoms.atoms.size(), leaf, topo.euler, u.euler,
+              k ? ("the union's with leaves 1/" + std::to_string(1 << k)).c_str()
+                : "still differs");
+        }
+      }
     }
     if (index % 5 == 0) {
       mg::PolygonSoup one, two;
@@ -328,6 +401,7 @@ TEST(GarbingProperties, RandomUnionsOfBalls) {
       cases, depth_stops);
   for (const auto& [kind, n] : euler_differs) std::printf(" %s %d", kind.c_str(), n);
   std::printf("\n%d garb runs made to fail, %.1f s\n", failing_runs, failing_seconds);
+  if (levels > 0) print_classes(classes, levels);
 }
 
 }  // namespace
