@@ -8,7 +8,8 @@
 // tenth case is also given to the garb program in a run made to fail (a bad atom, a missing or
 // unwritable output folder, an output naming the input or a folder): exit code, one line naming
 // the file, and no output or temporary file left.
-// MG_PROPERTY_CASES (default 500) sets the count: a long run is documented in docs/testing.md.
+// MG_PROPERTY_CASES (default 500) sets the count, MG_PROPERTY_FIRST (default 0) the first
+// case: a long run, in chunks, is documented in docs/testing.md.
 // MG_PROPERTY_CLASSIFY=N classes each Euler characteristic difference by the size of the
 // feature M2 misses (garbing the case again with leaves up to 2^N times smaller) and prints a
 // table.
@@ -267,6 +268,13 @@ int case_count() {
   return env ? std::max(1, std::atoi(env)) : 500;
 }
 
+/// MG_PROPERTY_FIRST (default 0): the first case's index, so that a long run can go in chunks
+/// (cases FIRST to FIRST + CASES - 1; each case depends on its index alone).
+int first_case() {
+  const char* env = std::getenv("MG_PROPERTY_FIRST");
+  return env ? std::max(0, std::atoi(env)) : 0;
+}
+
 /// MG_PROPERTY_CLASSIFY=N (0 to 4; default 0, off): how many finer octrees a case whose Euler
 /// characteristic differs from the union's is garbed again with (see resolving_level).
 int classify_levels() {
@@ -320,13 +328,13 @@ void print_classes(const std::map<int, EulerClass>& classes, int levels) {
 }
 
 TEST(GarbingProperties, RandomUnionsOfBalls) {
-  const int cases = case_count();
+  const int cases = case_count(), first = first_case();
   std::map<std::string, int> euler_differs;  // by kind
   int depth_stops = 0, failing_runs = 0;
   double failing_seconds = 0;
   const int levels = classify_levels();
   std::map<int, EulerClass> classes;  // by resolving_level
-  for (int index = 0; index < cases; ++index) {
+  for (int index = first; index < first + cases; ++index) {
     std::string kind;
     const mg::MedialSurface atoms = random_union(index, kind);
     SCOPED_TRACE("case " + std::to_string(index) + " (" + kind + ", " +
@@ -396,9 +404,9 @@ TEST(GarbingProperties, RandomUnionsOfBalls) {
     if (HasFailure()) break;  // the first failing case, named, is enough
   }
   std::printf(
-      "%d cases, %d with the depth stop; Euler characteristic differing from the "
+      "%d cases (%d to %d), %d with the depth stop; Euler characteristic differing from the "
       "union's (cavities or tunnels below a leaf), by kind:",
-      cases, depth_stops);
+      cases, first, first + cases - 1, depth_stops);
   for (const auto& [kind, n] : euler_differs) std::printf(" %s %d", kind.c_str(), n);
   std::printf("\n%d garb runs made to fail, %.1f s\n", failing_runs, failing_seconds);
   if (levels > 0) print_classes(classes, levels);
