@@ -9,10 +9,12 @@
 // unwritable output folder, an output naming the input or a folder): exit code, one line naming
 // the file, and no output or temporary file left.
 // MG_PROPERTY_CASES (default 500) sets the count, MG_PROPERTY_FIRST (default 0) the first
-// case: a long run, in chunks, is documented in docs/testing.md.
+// case: a long run, in chunks, is documented in docs/testing.md. MG_PROPERTY_DUMP=DIR writes
+// each case's atoms to DIR/case_<index>.ma (to garb a failing case by hand).
 // MG_PROPERTY_CLASSIFY=N classes each Euler characteristic difference by the size of the
 // feature M2 misses (garbing the case again with leaves up to 2^N times smaller) and prints a
 // table.
+#include "core/medial_surface.h"
 #include "core/mesh.h"
 #include "core/mesh_topology.h"
 #include "garbing/garb.h"
@@ -329,6 +331,7 @@ void print_classes(const std::map<int, EulerClass>& classes, int levels) {
 
 TEST(GarbingProperties, RandomUnionsOfBalls) {
   const int cases = case_count(), first = first_case();
+  int run = 0;                               // the cases run (fewer than `cases` after a failure)
   std::map<std::string, int> euler_differs;  // by kind
   int depth_stops = 0, failing_runs = 0;
   double failing_seconds = 0;
@@ -339,6 +342,8 @@ TEST(GarbingProperties, RandomUnionsOfBalls) {
     const mg::MedialSurface atoms = random_union(index, kind);
     SCOPED_TRACE("case " + std::to_string(index) + " (" + kind + ", " +
                  std::to_string(atoms.atoms.size()) + " balls)");
+    if (const char* dump = std::getenv("MG_PROPERTY_DUMP"))  // the case for `garb`, by hand
+      mg::write_medial_surface(atoms, std::string(dump) + "/case_" + std::to_string(index) + ".ma");
     // The depth stop at level 10 (default 14): where it fires the case only counts, and a
     // near-tangent pair would otherwise split to level 14 (seconds per case).
     mg::garbing::GarbOptions opt;
@@ -401,12 +406,13 @@ TEST(GarbingProperties, RandomUnionsOfBalls) {
       failing_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+    ++run;
     if (HasFailure()) break;  // the first failing case, named, is enough
   }
   std::printf(
       "%d cases (%d to %d), %d with the depth stop; Euler characteristic differing from the "
       "union's (cavities or tunnels below a leaf), by kind:",
-      cases, first, first + cases - 1, depth_stops);
+      run, first, first + run - 1, depth_stops);
   for (const auto& [kind, n] : euler_differs) std::printf(" %s %d", kind.c_str(), n);
   std::printf("\n%d garb runs made to fail, %.1f s\n", failing_runs, failing_seconds);
   if (levels > 0) print_classes(classes, levels);
