@@ -52,7 +52,8 @@ SolidQuery::SolidQuery(const PolygonSoup& mesh, Distances distances)
   impl_->tree = std::make_unique<Tree>(faces(impl_->surface).first, faces(impl_->surface).second,
                                        impl_->surface);
   impl_->tree->build();
-  impl_->tree->accelerate_distance_queries();
+  // The distance search's k-d tree on the tree that answers distances only.
+  if (distances == Distances::cgal) impl_->tree->accelerate_distance_queries();
   impl_->inside = std::make_unique<Inside>(*impl_->tree);
   if (distances == Distances::plain) {
     impl_->plain = std::make_unique<PlainTree>(faces(impl_->surface).first,
