@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace mg::garbing::refine {
 namespace {
@@ -13,11 +14,16 @@ namespace {
 /// Triangulates a dual face by least total diagonal length (detail::min_diagonal_triangulation:
 /// keeps the triangles of non-planar faces well shaped). A diagonal that is already an edge
 /// of the mesh, or a diagonal of an earlier polygon (two dual faces can share more than one
-/// vertex pair), is forbidden: it would be shared by more than two faces. When no
-/// triangulation avoids them, the polygon is fanned from a new vertex at its centroid, moved
-/// onto G.
-void triangulate_polygon(const std::vector<int>& poly, detail::EdgeSet& edges, const Context& ctx,
-                         Vertices& m2, RefineStats& stats, Triangles& out) {
+/// vertex pair), is forbidden: it would be shared by more than two faces. A chord of another
+/// polygon too (`shared`, where M1 is pinched) is avoided when the polygon has a
+/// triangulation without it: around a pinched M1 edge the dual of one end can be a flat quad
+/// whose two chords cross, and the other end's polygon taking either one would cut through
+/// it in the fold-free starting mesh. When no triangulation avoids the forbidden ones, the
+/// polygon is fanned from a new vertex at its centroid, moved onto G.
+void triangulate_polygon(const std::vector<int>& poly, detail::EdgeSet& edges,
+                         const detail::EdgeSet& shared, const Context& ctx, Vertices& m2,
+                         RefineStats& stats, Triangles& out) {
+  if (detail::min_diagonal_triangulation(poly, m2.position, edges, out, &shared)) return;
   if (detail::min_diagonal_triangulation(poly, m2.position, edges, out)) return;
   const int n = static_cast<int>(poly.size());
   Vec3 centroid = Vec3::Zero();
@@ -98,8 +104,21 @@ Triangles triangulate(const Polygons& polygons, const Context& ctx, Vertices& m2
   for (const auto& poly : polygons)
     for (std::size_t i = 0; i < poly.size(); ++i)
       edges.insert(poly[i], poly[(i + 1) % poly.size()]);
+  // The chords (non-adjacent vertex pairs) that more than one polygon holds.
+  std::vector<std::pair<int, int>> chords;
+  for (const auto& poly : polygons) {
+    const std::size_t n = poly.size();
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 2; j < n; ++j)
+        if (i > 0 || j + 1 < n) chords.push_back(std::minmax(poly[i], poly[j]));
+  }
+  std::sort(chords.begin(), chords.end());
+  detail::EdgeSet shared(m2.position.size());
+  for (std::size_t k = 1; k < chords.size(); ++k)
+    if (chords[k] == chords[k - 1]) shared.insert(chords[k].first, chords[k].second);
   Triangles triangles;
-  for (const auto& poly : polygons) triangulate_polygon(poly, edges, ctx, m2, stats, triangles);
+  for (const auto& poly : polygons)
+    triangulate_polygon(poly, edges, shared, ctx, m2, stats, triangles);
   return triangles;
 }
 

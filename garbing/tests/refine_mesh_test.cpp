@@ -263,6 +263,27 @@ TEST(DualFaceTriangulation, ShortestDiagonalsAndNoRepeatedEdge) {
     EXPECT_NE(std::find(tris[t].begin(), tris[t].end(), 3), tris[t].end());
   }
 
+  // Chords in `avoid` are forbidden too: without its two shortest chords the hexagon takes
+  // others; with every chord avoided it is refused and nothing changes.
+  mg::garbing::detail::EdgeSet ring(hexagon.size()), avoid(hexagon.size());
+  for (int i = 0; i < 6; ++i) ring.insert(poly[i], poly[(i + 1) % 6]);
+  avoid.insert(1, 5);
+  avoid.insert(2, 4);
+  std::vector<std::array<int, 3>> kept;
+  ASSERT_TRUE(mg::garbing::detail::min_diagonal_triangulation(poly, hexagon, ring, kept, &avoid));
+  EXPECT_EQ(kept.size(), 4u);
+  EXPECT_FALSE(ring.contains(1, 5));
+  EXPECT_FALSE(ring.contains(2, 4));
+  mg::garbing::detail::EdgeSet fresh(hexagon.size()), every_chord(hexagon.size());
+  for (int i = 0; i < 6; ++i) fresh.insert(poly[i], poly[(i + 1) % 6]);
+  for (int a = 0; a < 6; ++a)
+    for (int b = a + 2; b < 6; ++b) every_chord.insert(a, b);
+  kept.clear();
+  EXPECT_FALSE(
+      mg::garbing::detail::min_diagonal_triangulation(poly, hexagon, fresh, kept, &every_chord));
+  EXPECT_TRUE(kept.empty());
+  EXPECT_FALSE(fresh.contains(0, 3));
+
   // A third quad on the same four vertices has no diagonal left: refused, nothing changed.
   const std::vector<int> third = {0, 1, 2, 3};
   const std::size_t before = tris.size();

@@ -37,11 +37,13 @@ class EdgeSet {
 /// diagonal already in `edges` is forbidden: it would be shared by more than two triangles.
 /// On success appends the n - 2 triangles to `out`, adds the chosen diagonals to `edges` and
 /// returns true; when every triangulation needs a forbidden diagonal, changes nothing and
-/// returns false. Ties go to the lowest split vertex, so the result is deterministic.
+/// returns false. Ties go to the lowest split vertex, so the result is deterministic. A chord
+/// in `avoid` (when given) is forbidden too.
 /// @pre poly.size() >= 3; the polygon's own edges are in `edges` (not needed for a triangle)
 inline bool min_diagonal_triangulation(const std::vector<int>& poly,
                                        const std::vector<Eigen::Vector3d>& position, EdgeSet& edges,
-                                       std::vector<std::array<int, 3>>& out) {
+                                       std::vector<std::array<int, 3>>& out,
+                                       const EdgeSet* avoid = nullptr) {
   const int n = static_cast<int>(poly.size());
   if (n == 3) {
     out.push_back({poly[0], poly[1], poly[2]});
@@ -51,7 +53,8 @@ inline bool min_diagonal_triangulation(const std::vector<int>& poly,
   std::vector<double> length(n * n, 0.0);
   for (int i = 0; i < n; ++i)
     for (int j = i + 2; j < n; ++j)
-      length[i * n + j] = edges.contains(poly[i], poly[j])
+      length[i * n + j] = edges.contains(poly[i], poly[j]) ||
+                                  (avoid != nullptr && avoid->contains(poly[i], poly[j]))
                               ? INFINITY
                               : (position[poly[i]] - position[poly[j]]).norm();
   std::vector<double> cost(n * n, 0.0);
