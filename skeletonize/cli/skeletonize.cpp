@@ -294,7 +294,9 @@ int skeletonize_main(int argc, char** argv) {
   const mg::PolygonSoup mesh = mg::read_polygon_soup(input);
   const mg::skeletonize::Skeleton skeleton = mg::skeletonize::skeletonize(mesh, opt, input);
   const mg::Stopwatch union_clock;
-  const mg::skeletonize::UnionTopology ut = mg::skeletonize::union_topology(skeleton.atoms);
+  const mg::skeletonize::UnionTopology ut = skeleton.union_complex
+                                                ? skeleton.union_complex->topology
+                                                : mg::skeletonize::union_topology(skeleton.atoms);
   const double seconds_union = union_clock.seconds();
 
   // The simplification of the poles' medial mesh.
@@ -311,8 +313,9 @@ int skeletonize_main(int argc, char** argv) {
     if (sopt.target_atoms > poles)
       throw mg::InvalidInput("--simplify " + simplify + ": more than the skeleton's " +
                              std::to_string(poles) + " atoms (poles) of " + input);
-    simplified = mg::skeletonize::simplify_medial_mesh(mesh, skeleton.atoms, skeleton.cells, sopt,
-                                                       skeleton.samples, skeleton.atom_of_sample);
+    simplified = mg::skeletonize::simplify_medial_mesh(
+        mesh, skeleton.atoms, skeleton.cells, sopt, skeleton.samples, skeleton.atom_of_sample,
+        skeleton.union_complex ? &*skeleton.union_complex : nullptr);
     const mg::Stopwatch distance_clock;
     to_envelope = samples_to_envelope(simplified->surface, skeleton.samples);
     seconds_distance = distance_clock.seconds();

@@ -391,7 +391,9 @@ class Skeletonizer {
   }
 
   void add_connectivity() {
-    const RegularSimplices rs = regular_simplices(out_.atoms);
+    UnionComplex dual;
+    const RegularSimplices rs = regular_simplices(out_.atoms, &dual);
+    out_.union_complex = std::move(dual);
     out_.stats.hidden_atoms = rs.hidden_atoms;
     const auto& a = out_.atoms.atoms;
     std::vector<char> keep_edge(rs.edges.size()), keep_triangle(rs.triangles.size());

@@ -26,6 +26,7 @@
 #include <cstdlib>
 #include <iterator>
 #include <numeric>
+#include <optional>
 #include <queue>
 #include <string>
 #include <tuple>
@@ -156,13 +157,14 @@ class Simplifier {
  public:
   Simplifier(const PolygonSoup& object, const MedialSurface& mesh, const std::vector<Quad>& cells,
              const SimplifyOptions& opt, const std::vector<Vec3>& samples,
-             const std::vector<int>& atom_of_sample)
+             const std::vector<int>& atom_of_sample, const UnionComplex* dual)
       : object_(object),
         mesh_(mesh),
         cells_(cells),
         opt_(opt),
         samples_(samples),
-        atom_of_sample_(atom_of_sample) {}
+        atom_of_sample_(atom_of_sample),
+        dual_(dual) {}
 
   SimplifiedMedialMesh run() {
     Stopwatch t;
@@ -222,6 +224,16 @@ class Simplifier {
         throw InvalidInput(
             "fewer samples than the object's vertices (the samples begin with them)");
     }
+    if (dual_) {
+      auto in_range = [&](const auto& simplices) {
+        return std::all_of(simplices.begin(), simplices.end(), [&](const auto& s) {
+          return std::all_of(s.begin(), s.end(), [&](int x) { return x >= 0 && x < n; });
+        });
+      };
+      if (!in_range(dual_->edges) || !in_range(dual_->triangles) || !in_range(dual_->tetrahedra))
+        throw InvalidInput("the union's dual complex names an atom out of range (" +
+                           std::to_string(n) + " atoms): not the complex of these atoms");
+    }
     if (opt_.target_atoms < 1) throw InvalidInput("target of 0 atoms: must be >= 1");
     if (opt_.target_atoms > atoms.size())
       throw InvalidInput("target of " + std::to_string(opt_.target_atoms) +
@@ -280,7 +292,9 @@ class Simplifier {
     if (opt_.union_complex) {
       // Only the simplices of the union's dual complex (balls that meet), itself a complex:
       // what is left stays closed under faces.
-      const UnionComplex uc = union_complex(MedialSurface{atoms, {}, {}});
+      std::optional<UnionComplex> computed;
+      if (!dual_) computed = union_complex(MedialSurface{atoms, {}, {}});
+      const UnionComplex& uc = dual_ ? *dual_ : *computed;
       auto keep_common = [](auto& mine, const auto& theirs) {
         std::decay_t<decltype(mine)> kept;
         std::set_intersection(mine.begin(), mine.end(), theirs.begin(), theirs.end(),
@@ -1090,6 +1104,7 @@ class Simplifier {
   const SimplifyOptions& opt_;
   const std::vector<Vec3>& samples_;
   const std::vector<int>& atom_of_sample_;
+  const UnionComplex* dual_;  // the union's dual complex, when the caller has it
   SimplifiedMedialMesh out_;
   double tau_ = 0, k_ = 0, delta_ = 0;
   std::unique_ptr<SolidQuery> solid_;       // the object
@@ -1119,8 +1134,9 @@ SimplifiedMedialMesh simplify_medial_mesh(const PolygonSoup& object, const Media
                                           const std::vector<std::array<int, 4>>& cells,
                                           const SimplifyOptions& opt,
                                           const std::vector<Eigen::Vector3d>& samples,
-                                          const std::vector<int>& atom_of_sample) {
-  return Simplifier(object, mesh, cells, opt, samples, atom_of_sample).run();
+                                          const std::vector<int>& atom_of_sample,
+                                          const UnionComplex* dual) {
+  return Simplifier(object, mesh, cells, opt, samples, atom_of_sample, dual).run();
 }
 
 }  // namespace mg::skeletonize

@@ -204,10 +204,9 @@ Complex complex_1d(const std::vector<MedialAtom>& a, const std::vector<int>& ind
   return c;
 }
 
-/// The dual complex of the union of all the atoms (hidden ones excluded).
-Complex dual_complex(const MedialSurface& atoms, std::size_t& hidden) {
-  Regular3 rt = regular_triangulation(atoms);
-  hidden = atoms.atoms.size() - rt.number_of_vertices();
+/// The dual complex of the union of all the atoms (hidden ones excluded), from their regular
+/// triangulation `rt` (taken over in 3D).
+Complex dual_complex(const MedialSurface& atoms, Regular3& rt) {
   Complex c;
   if (rt.dimension() == 3) {
     c = complex_3d(rt);
@@ -231,25 +230,30 @@ Complex dual_complex(const MedialSurface& atoms, std::size_t& hidden) {
   return c;
 }
 
+UnionComplex union_complex_of(const MedialSurface& atoms, Regular3& rt) {
+  const std::size_t hidden = atoms.atoms.size() - rt.number_of_vertices();
+  Complex c = dual_complex(atoms, rt);
+  UnionComplex out;
+  out.topology = summarise(c, atoms.atoms.size(), hidden);
+  out.edges = std::move(c.edges);
+  out.triangles = std::move(c.triangles);
+  out.tetrahedra = std::move(c.tetrahedra);
+  return out;
+}
+
 }  // namespace
 
 UnionTopology union_topology(const MedialSurface& atoms) { return union_complex(atoms).topology; }
 
 UnionComplex union_complex(const MedialSurface& atoms) {
   validate(atoms);
-  std::size_t hidden = 0;
-  const Complex c = dual_complex(atoms, hidden);
-  UnionComplex out;
-  out.topology = summarise(c, atoms.atoms.size(), hidden);
-  out.edges = c.edges;
-  out.triangles = c.triangles;
-  out.tetrahedra = c.tetrahedra;
-  return out;
+  Regular3 rt = regular_triangulation(atoms);
+  return union_complex_of(atoms, rt);
 }
 
-RegularSimplices regular_simplices(const MedialSurface& atoms) {
+RegularSimplices regular_simplices(const MedialSurface& atoms, UnionComplex* dual) {
   validate(atoms);
-  const Regular3 rt = regular_triangulation(atoms);
+  Regular3 rt = regular_triangulation(atoms);
   RegularSimplices out;
   out.hidden_atoms = atoms.atoms.size() - rt.number_of_vertices();
   for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
@@ -279,6 +283,7 @@ RegularSimplices regular_simplices(const MedialSurface& atoms) {
   std::sort(out.edges.begin(), out.edges.end());
   std::sort(out.triangles.begin(), out.triangles.end());
   std::sort(out.tetrahedra.begin(), out.tetrahedra.end());
+  if (dual) *dual = union_complex_of(atoms, rt);  // last: takes the triangulation over
   return out;
 }
 

@@ -180,4 +180,45 @@ TEST(Simplify, RefusesATargetOfZeroOrAboveTheAtomCount) {
   EXPECT_THROW(simplify(torus, 10, {}, opt), mg::InvalidInput);
 }
 
+TEST(Simplify, TheSkeletonsUnionComplexIsUnionComplexAndGivesTheSameOutput) {
+  // skeletonize builds the union's dual complex from the regular triangulation of its
+  // connectivity; simplify_medial_mesh takes it instead of triangulating again.
+  const mg::PolygonSoup torus = mg::make_bumpy_torus(48, 24, 1.0, 0.35, 0.1, 12, 6);
+  sk::SkeletonOptions sopt;
+  sopt.connectivity = true;
+  sopt.clamp_radius = true;
+  const sk::Skeleton s = sk::skeletonize(torus, sopt, "torus");
+  ASSERT_TRUE(s.union_complex.has_value());
+  const sk::UnionComplex direct = sk::union_complex(s.atoms);
+  EXPECT_EQ(s.union_complex->edges, direct.edges);
+  EXPECT_EQ(s.union_complex->triangles, direct.triangles);
+  EXPECT_EQ(s.union_complex->tetrahedra, direct.tetrahedra);
+  EXPECT_EQ(s.union_complex->topology.euler, direct.topology.euler);
+  EXPECT_EQ(s.union_complex->topology.components, direct.topology.components);
+  EXPECT_FALSE(direct.triangles.empty());
+
+  sk::SimplifyOptions opt;
+  opt.target_atoms = 40;
+  const auto own =
+      sk::simplify_medial_mesh(torus, s.atoms, s.cells, opt, s.samples, s.atom_of_sample);
+  const auto given = sk::simplify_medial_mesh(torus, s.atoms, s.cells, opt, s.samples,
+                                              s.atom_of_sample, &*s.union_complex);
+  EXPECT_EQ(own.surface.edges, given.surface.edges);
+  EXPECT_EQ(own.surface.faces, given.surface.faces);
+  ASSERT_EQ(own.surface.atoms.size(), given.surface.atoms.size());
+  for (std::size_t i = 0; i < own.surface.atoms.size(); ++i) {
+    EXPECT_EQ(own.surface.atoms[i].centre, given.surface.atoms[i].centre);
+    EXPECT_EQ(own.surface.atoms[i].radius, given.surface.atoms[i].radius);
+  }
+
+  // A complex naming atoms these do not have is refused.
+  sk::UnionComplex wrong = direct;
+  wrong.edges.push_back({0, static_cast<int>(s.atoms.atoms.size())});
+  EXPECT_THROW(
+      sk::simplify_medial_mesh(torus, s.atoms, s.cells, opt, s.samples, s.atom_of_sample, &wrong),
+      mg::InvalidInput);
+  // Without connectivity there is none.
+  EXPECT_FALSE(sk::skeletonize(torus, {}, "torus").union_complex.has_value());
+}
+
 }  // namespace

@@ -7,11 +7,13 @@
 #include "core/medial_surface.h"
 #include "core/mesh.h"
 #include "skeletonize/solid_query.h"
+#include "skeletonize/union_topology.h"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,9 @@ struct Skeleton {
   /// kept (inside the object), sorted (i < j < k < l). Not written to `.ma` files; they fill the
   /// complex the simplification (simplify.h) works on.
   std::vector<std::array<int, 4>> cells;
+  /// With opt.connectivity: the union's dual complex of `atoms` (union_complex(atoms)), from the
+  /// same regular triangulation as the connectivity; its topology is union_topology(atoms).
+  std::optional<UnionComplex> union_complex;
   SkeletonStats stats;
 };
 

@@ -8,6 +8,7 @@
 
 #include "core/medial_surface.h"
 #include "core/mesh.h"
+#include "skeletonize/union_topology.h"
 
 #include <array>
 #include <cstddef>
@@ -126,17 +127,21 @@ struct SimplifiedMedialMesh {
 /// @param samples, atom_of_sample  with SimplifyOptions::surface_planes: skeletonize()'s samples
 ///        (the object's used vertices first, in order) and the atom each one's pole became (-1:
 ///        none); empty: the slabs' planes are used
+/// @param dual   the union's dual complex of mesh.atoms when the caller has it
+///        (Skeleton::union_complex, from skeletonize's own triangulation); computed otherwise
+///        (a second regular triangulation) when SimplifyOptions::union_complex asks for it
 /// @pre object a closed, manifold, consistently oriented mesh (either orientation); mesh valid
 ///      (validate()), radii > 0, cells' four atoms distinct and in range; samples and
 ///      atom_of_sample of one size, atoms in [-1, atoms), at least as many samples as the
 ///      object's used vertices; 1 <= opt.target_atoms <= mesh.atoms.size(); stability_weight,
-///      max_excess and max_shortfall finite, >= 0
+///      max_excess and max_shortfall finite, >= 0; dual, if given, is union_complex(mesh.atoms)
 /// @throws InvalidInput naming the object's defect, the first offending atom, cell or sample,
 ///         or the option; TopologyError if the complex's components changed (a bug)
 SimplifiedMedialMesh simplify_medial_mesh(const PolygonSoup& object, const MedialSurface& mesh,
                                           const std::vector<std::array<int, 4>>& cells,
                                           const SimplifyOptions& opt,
                                           const std::vector<Eigen::Vector3d>& samples = {},
-                                          const std::vector<int>& atom_of_sample = {});
+                                          const std::vector<int>& atom_of_sample = {},
+                                          const UnionComplex* dual = nullptr);
 
 }  // namespace mg::skeletonize

@@ -55,7 +55,9 @@ struct RegularSimplices {
   std::size_t hidden_atoms = 0;
 };
 
+/// With `dual`, also the union's dual complex into it (what union_complex() returns), from the
+/// same triangulation: one triangulation instead of two.
 /// @pre atoms valid   @throws InvalidInput
-RegularSimplices regular_simplices(const MedialSurface& atoms);
+RegularSimplices regular_simplices(const MedialSurface& atoms, UnionComplex* dual = nullptr);
 
 }  // namespace mg::skeletonize
