@@ -1,0 +1,155 @@
+#!/usr/bin/python3
+"""Scale: garbing time and peak memory against the atom count, OpenVDB at the same vertex count.
+
+The bumpy torus generated at three resolutions (`models generate bumpy-torus --ring R --tube T`,
+R x T vertices), skeletonized from its vertices with `--merge-tol 0` (every vertex pole kept:
+about one atom per vertex), garbed with its default options (`garb --stats`: seconds per phase,
+peak memory), and the same balls meshed by OpenVDB (`evaluate vdb`, the union of the spheres) at
+M2's vertex count. One program at a time, smallest size first, so times and memory are not
+shared with another job; each program's figures are one run (the 1M-atom garbing takes about a
+minute). The log-log slope of each phase from the middle size to the largest is what issue 20
+bounds (<= 0.3 for the garbing: the output's size does not grow). Writes
+results/scaling.{csv,md,png}.
+
+Usage: experiments/scaling.py [--build build] [--sizes 10k,100k,1m] [--results DIR]
+"""
+import argparse
+import math
+import os
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness as H  # noqa: E402
+
+# Size name -> (ring, tube) of the generated bumpy torus (the reference one is 126 x 126).
+SIZES = {"10k": (126, 80), "100k": (400, 250), "1m": (1260, 800)}
+PHASES = ["cones", "octree", "m1", "m2"]  # garb --stats "seconds" keys: the garbing's phases
+
+COLUMNS = ["size", "vertices", "atoms", "skeletonize_s", "m2_v", "depth", "leaves",
+           "garbing_s", "cones_s", "octree_s", "m1_s", "m2_s", "peak_mb", "vdb_v", "vdb_voxel",
+           "vdb_s", "vdb_peak_mb", "vdb_over_garbing_s", "garbing_over_vdb_mb"]
+HEADERS = ["size", "mesh V", "atoms", "skeletonize s", "M2 V", "depth", "leaves", "garbing s",
+           "cones s", "octree s", "M1 s", "M2 s", "garbing peak MB", "OpenVDB V",
+           "OpenVDB voxel", "OpenVDB s", "OpenVDB peak MB", "OpenVDB s / garbing s",
+           "garbing MB / OpenVDB MB"]
+
+
+def size_row(R, size, progress):
+    ring, tube = SIZES[size]
+    mesh = R.path(size, "bumpy_torus.off")
+    atoms = R.path(size, "atoms.ma")
+    progress("%s: generate %d x %d, skeletonize" % (size, ring, tube))
+    R.run("models", "generate", "bumpy-torus", "-o", mesh, "--ring", ring, "--tube", tube)
+    sk = R.run_stats("skeletonize", mesh, "-o", atoms, "--merge-tol", 0,
+                     stats=R.path(size, "skeleton.json"), label="%s skeletonize" % size)
+    progress("%s: garb %d atoms" % (size, sk["atoms"]))
+    g = R.run_stats("garb", atoms, "-o", R.path(size, "m2.off"),
+                    stats=R.path(size, "garb.json"), label="%s garb" % size)
+    row = {"size": size, "vertices": ring * tube, "atoms": sk["atoms"],
+           "skeletonize_s": sk["seconds"]["total"], "m2_v": g["m2"]["vertices"],
+           "depth": g["depth"], "leaves": sum(x["leaves"] for x in g["leaves_per_level"]),
+           "garbing_s": g["seconds"]["garbing"], "peak_mb": g["peak_memory_mb"]}
+    for phase in PHASES:
+        row[phase + "_s"] = g["seconds"][phase]
+    progress("%s: OpenVDB at %d vertices" % (size, row["m2_v"]))
+    v = R.run("evaluate", "vdb", atoms, "-o", R.path(size, "vdb.off"), "--match-vertices",
+              row["m2_v"], "--json", label="%s vdb --match-vertices" % size)
+    # Timed again at the voxel found, alone (the search's probes are not the baseline's time).
+    t = R.run("evaluate", "vdb", atoms, "-o", R.path(size, "vdb.off"), "--voxel", v["voxel"],
+              "--json", label="%s vdb" % size)
+    row.update({"vdb_v": t["vertices"], "vdb_voxel": v["voxel"], "vdb_s": t["seconds"]["median"],
+                "vdb_peak_mb": t["peak_memory_mb"]})
+    row["vdb_over_garbing_s"] = row["vdb_s"] / row["garbing_s"]
+    row["garbing_over_vdb_mb"] = row["peak_mb"] / row["vdb_peak_mb"]
+    return row
+
+
+def slopes(rows):
+    """Log-log slopes between consecutive sizes: {key: [(from, to, slope)]}."""
+    out = {}
+    for key in ["garbing_s"] + [p + "_s" for p in PHASES] + ["peak_mb", "vdb_s"]:
+        out[key] = [(a["size"], b["size"],
+                     math.log(b[key] / a[key]) / math.log(b["atoms"] / a["atoms"]))
+                    for a, b in zip(rows, rows[1:]) if a[key] > 0 and b[key] > 0]
+    return out
+
+
+def plot(out, rows):
+    """scaling.png: seconds per phase and peak memory against atoms, log-log, with OpenVDB."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    atoms = [r["atoms"] for r in rows]
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    a.loglog(atoms, [r["garbing_s"] for r in rows], "o-", color="k", label="garbing")
+    for phase, style in zip(PHASES, ["s--", "^--", "v--", "D--"]):
+        a.loglog(atoms, [r[phase + "_s"] for r in rows], style, label=phase)
+    a.loglog(atoms, [r["vdb_s"] for r in rows], "x-", color="tab:red",
+             label="OpenVDB (same V)")
+    a.set_xlabel("atoms")
+    a.set_ylabel("seconds (2 threads)")
+    a.set_title("time")
+    a.legend(fontsize=8)
+    b.loglog(atoms, [r["peak_mb"] for r in rows], "o-", color="k", label="garbing")
+    b.loglog(atoms, [r["vdb_peak_mb"] for r in rows], "x-", color="tab:red",
+             label="OpenVDB (same V)")
+    b.set_xlabel("atoms")
+    b.set_ylabel("peak memory, MB")
+    b.set_title("memory")
+    b.legend(fontsize=8)
+    fig.suptitle("Bumpy torus skeletonized with --merge-tol 0 (experiments/scaling.py)")
+    fig.tight_layout()
+    tmp = os.path.join(out, "scaling.partial.png")
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, os.path.join(out, "scaling.png"))
+    plt.close(fig)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--sizes", default="10k,100k,1m",
+                    help="comma-separated, from: " + ", ".join(SIZES))
+    ap.add_argument("--results", default=H.RESULTS)
+    args = ap.parse_args(argv)
+    sizes = [s for s in args.sizes.split(",") if s]
+    unknown = [s for s in sizes if s not in SIZES]
+    if unknown or not sizes:
+        H.die("unknown size(s) %s (known: %s)" % (", ".join(unknown) or "none",
+                                                   ", ".join(SIZES)), "scaling")
+    for program in ("models", "skeletonize", "garb", "evaluate"):
+        if not os.access(os.path.join(args.build, "bin", program), os.X_OK):
+            H.die("%s/bin/%s not found: build first" % (args.build, program), "scaling")
+    R = H.Runner(args.build, os.path.join(args.build, "experiments-work", "scaling"))
+    start = time.time()
+    try:
+        rows = [size_row(R, s, H.log) for s in sorted(sizes, key=lambda s: SIZES[s][0])]
+    except H.StepError as e:
+        H.die(str(e), "scaling")
+    seconds = time.time() - start
+    H.write_csv(os.path.join(args.results, "scaling.csv"), rows, COLUMNS)
+    lines = ["# Scale: garbing against the atom count (issue 20)", "",
+             "The bumpy torus at R x T vertices, skeletonized from its vertices with "
+             "`--merge-tol 0`, garbed with default options (2 threads), and OpenVDB's mesh of "
+             "the same balls at M2's vertex count (`evaluate vdb --match-vertices`, then timed "
+             "alone at the voxel found). One program at a time; one run each.", "",
+             "Command: `/usr/bin/python3 experiments/scaling.py --build %s --sizes %s` "
+             "(%.0f s)." % (args.build, ",".join(sizes), seconds), "",
+             H.markdown_table(rows, COLUMNS, HEADERS), ""]
+    s = slopes(rows)
+    if len(rows) > 1:
+        lines += ["Log-log slopes (seconds or MB per atom count) between consecutive sizes "
+                  "(issue 20 bounds the garbing's from 100k to 1M atoms by 0.3):", "",
+                  "| quantity | " + " | ".join("%s -> %s" % (a, b) for a, b, _ in s["garbing_s"])
+                  + " |", "|---|" + "---|" * len(s["garbing_s"])]
+        for key, values in s.items():
+            lines.append("| %s | %s |" % (key, " | ".join("%.2f" % v for _, _, v in values)))
+        lines.append("")
+    H.write_atomically(os.path.join(args.results, "scaling.md"), "\n".join(lines))
+    plot(args.results, rows)
+    H.log("wrote %s/scaling.{csv,md,png} in %.0f s" % (args.results, seconds))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
