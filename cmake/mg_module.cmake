@@ -14,22 +14,30 @@ function(mg_set_warnings target)
 endfunction()
 
 # mg_add_library(<target> ALIAS <name> SOURCES ... [PUBLIC ...] [PRIVATE ...])
-# Creates the static library <target>, its alias mg::<name>, include dir <module>/include.
+# Creates the static library <target>, its alias mg::<name>, include dir <module>/include, and
+# installs both into the CMake package (export set garbingTargets, exported as mg::<name>; see
+# cmake/garbingConfig.cmake.in).
 function(mg_add_library target)
   cmake_parse_arguments(A "" "ALIAS" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
   add_library(${target} STATIC ${A_SOURCES})
   add_library(mg::${A_ALIAS} ALIAS ${target})
-  target_include_directories(${target} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                              $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(${target} PUBLIC ${A_PUBLIC} PRIVATE ${A_PRIVATE})
   mg_set_warnings(${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${A_ALIAS})
+  install(TARGETS ${target} EXPORT garbingTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endfunction()
 
-# mg_add_program(<name> SOURCES ... LIBS ...): an executable landing in <build>/bin/.
+# mg_add_program(<name> SOURCES ... LIBS ...): an executable landing in <build>/bin/, installed
+# into <prefix>/bin.
 function(mg_add_program name)
   cmake_parse_arguments(A "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_LIBS})
   mg_set_warnings(${name})
+  install(TARGETS ${name} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endfunction()
 
 # mg_add_gtest(<name> SOURCES ... LIBS ... [PROPERTIES ...]): a GoogleTest executable whose
