@@ -21,6 +21,13 @@ function(mg_add_library target)
   cmake_parse_arguments(A "" "ALIAS" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
   add_library(${target} STATIC ${A_SOURCES})
   add_library(mg::${A_ALIAS} ALIAS ${target})
+  # Position-independent: the Python module (python/) links them into a shared object.
+  # With GCC, -fno-semantic-interposition keeps inlining as without -fPIC (our symbols are never
+  # interposed).
+  set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE -fno-semantic-interposition)
+  endif()
   target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
                                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(${target} PUBLIC ${A_PUBLIC} PRIVATE ${A_PRIVATE})

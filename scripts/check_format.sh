@@ -9,7 +9,7 @@ fix=0
 if [ "${1:-}" = "--fix" ]; then fix=1; shift; fi
 tool=${1:-clang-format}
 command -v "$tool" > /dev/null || { echo "check_format: $tool not found (Debian package clang-format)" >&2; exit 1; }
-mapfile -t files < <(find core garbing skeletonize evaluate render -name '*.cpp' -o -name '*.h' | sort)
+mapfile -t files < <(find core garbing skeletonize evaluate render python cmake/consumer -name '*.cpp' -o -name '*.h' | sort)
 if [ "$fix" = 1 ]; then
   "$tool" -i --style=file "${files[@]}"
   exit 0
