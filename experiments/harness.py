@@ -5,6 +5,7 @@ Every number the experiments write comes from a program's JSON output or from th
 in paper_tables.json; nothing is typed in.
 """
 import concurrent.futures
+import contextlib
 import csv
 import json
 import os
@@ -126,11 +127,42 @@ def fmt(x):
     return str(x)
 
 
-def run_pool(jobs, workers, progress):
-    """Runs (name, function, args) jobs on a local process pool; returns {name: result}.
-    The first failure stops the run with its message."""
+@contextlib.contextmanager
+def executor(workers, scheduler=None):
+    """The jobs' executor (a concurrent.futures.Executor): the local process pool with
+    `workers` processes, or, given a Dask scheduler's address, that cluster's workers
+    (Debian's python3-distributed). Dask workers must see the build and work folders at the
+    same paths (a shared file system) and find these modules (added to their path here; workers
+    joining later need PYTHONPATH=<repo>/experiments): docs/experiments.md."""
+    if not scheduler:
+        with concurrent.futures.ProcessPoolExecutor(max_workers=workers) as pool:
+            yield pool
+        return
+    try:
+        import distributed
+    except ImportError:
+        raise StepError("--scheduler needs Dask's distributed (Debian: python3-distributed)")
+    try:
+        client = distributed.Client(scheduler, timeout=15)
+    except OSError as e:
+        raise StepError("cannot reach the Dask scheduler at %s: %s" % (scheduler, e))
+    try:
+        # The jobs are pickled by reference to these modules: make them importable on each
+        # worker (a lambda travels by value; a function of this module would need it there).
+        client.run(lambda folder: None if folder in sys.path else sys.path.insert(0, folder),
+                   HERE)
+        with client.get_executor(pure=False) as pool:
+            yield pool
+    finally:
+        client.close()
+
+
+def run_pool(jobs, workers, progress, scheduler=None):
+    """Runs (name, function, args) jobs on the executor (the local process pool, or a Dask
+    cluster given its scheduler's address); returns {name: result}. The first failure stops
+    the run with its message. Results do not depend on where a job ran."""
     results = {}
-    with concurrent.futures.ProcessPoolExecutor(max_workers=workers) as pool:
+    with executor(workers, scheduler) as pool:
         futures = {pool.submit(fn, *args): name for name, fn, args in jobs}
         for fut in concurrent.futures.as_completed(futures):
             name = futures[fut]

@@ -14,7 +14,7 @@ the paper's path) for comparison. Times and peak memory are taken afterwards, on
 time: medians of 3 runs. Writes results/medial_meshes.{csv,md,png} and
 results/medial_meshes_renders.png.
 
-Usage: experiments/medial_meshes.py [--build build] [--models a,b] [--quick] [--jobs N]
+Usage: experiments/medial_meshes.py [--build build] [--models a,b] [--quick] [--jobs N] [--scheduler ADDRESS]
        [--results DIR]
 """
 import argparse
@@ -233,6 +233,8 @@ def main(argv):
     ap.add_argument("--models", help="comma-separated subset of: " + ", ".join(ALL_SETS))
     ap.add_argument("--quick", action="store_true", help="three small models, two analytic sets")
     ap.add_argument("--jobs", type=int, default=os.cpu_count(), help="parallel jobs")
+    ap.add_argument("--scheduler", help="run the jobs on the Dask cluster of this scheduler address "
+                    "(host:port; default: a local process pool of --jobs)")
     ap.add_argument("--results", help="write the results here instead of results/")
     args = ap.parse_args(argv)
     names = args.models.split(",") if args.models else (QUICK_SETS if args.quick else ALL_SETS)
@@ -245,7 +247,7 @@ def main(argv):
     start = time.time()
     try:
         jobs = [("medial mesh " + n, medial_mesh_job, (args.build, work, n)) for n in names]
-        results = H.run_pool(jobs, args.jobs, H.log)
+        results = H.run_pool(jobs, args.jobs, H.log, args.scheduler)
         rows = [r for n in names for r in results["medial mesh " + n]]
         timings(H.Runner(args.build, work), rows, H.log)
     except H.StepError as e:

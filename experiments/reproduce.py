@@ -9,7 +9,7 @@ report.py): table1, table2, smoothness, atoms (skeleton vs mesher error), cone_f
 depth_sweep, accuracy_vs_size, figure11, figure14, figure15, REPORT.md. It never writes the
 regression bounds: experiments/propose_bounds.py proposes them for review.
 
-Usage: experiments/reproduce.py [--build build] [--models a,b] [--quick] [--jobs N] [--results DIR]
+Usage: experiments/reproduce.py [--build build] [--models a,b] [--quick] [--jobs N] [--scheduler ADDRESS] [--results DIR]
 """
 import argparse
 import os
@@ -31,6 +31,8 @@ def parse_args(argv):
     ap.add_argument("--models", help="comma-separated subset of: " + ", ".join(J.TABLE1_MODELS))
     ap.add_argument("--quick", action="store_true", help="three small models, no sweeps or figures")
     ap.add_argument("--jobs", type=int, default=os.cpu_count(), help="parallel jobs")
+    ap.add_argument("--scheduler", help="run the jobs on the Dask cluster of this scheduler address "
+                    "(host:port; default: a local process pool of --jobs)")
     ap.add_argument("--results", help="write the results here instead of results/")
     args = ap.parse_args(argv)
     names = J.QUICK_MODELS if args.quick else J.TABLE1_MODELS
@@ -70,7 +72,7 @@ def main(argv):
         paper = H.paper_tables()
         jobs = job_list(build, work, names, args.quick, full)
         H.log("%d jobs on %d workers" % (len(jobs), args.jobs))
-        done = H.run_pool(jobs, args.jobs, H.log)
+        done = H.run_pool(jobs, args.jobs, H.log, args.scheduler)
         rows = [done["model " + n] for n in names]
         sweep_rows = [r for n in (J.SWEEP if full else []) for r in done["sweep " + n]]
         fig11 = [done["figure11 " + n] for n in (J.FIGURE11 if full else [])]

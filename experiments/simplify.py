@@ -9,7 +9,7 @@ seconds; H(G, O), two-sided, between its envelope G (balls, cones, slabs) and th
 and genus against the original's, H(M2, O). The unsimplified poles (their atoms garbed alone, as
 Table 1) are the reference row. Writes results/simplify.{csv,md,png}.
 
-Usage: experiments/simplify.py [--build build] [--models a,b] [--quick] [--jobs N]
+Usage: experiments/simplify.py [--build build] [--models a,b] [--quick] [--jobs N] [--scheduler ADDRESS]
        [--results DIR]
 """
 import argparse
@@ -134,6 +134,8 @@ def main(argv):
     ap.add_argument("--models", help="comma-separated subset of: " + ", ".join(MODELS))
     ap.add_argument("--quick", action="store_true", help="three small models")
     ap.add_argument("--jobs", type=int, default=os.cpu_count(), help="parallel jobs")
+    ap.add_argument("--scheduler", help="run the jobs on the Dask cluster of this scheduler address "
+                    "(host:port; default: a local process pool of --jobs)")
     ap.add_argument("--results", help="write the results here instead of results/")
     args = ap.parse_args(argv)
     names = args.models.split(",") if args.models else (QUICK if args.quick else MODELS)
@@ -146,7 +148,7 @@ def main(argv):
     start = time.time()
     try:
         jobs = [("simplify " + n, simplify_job, (args.build, work, n)) for n in names]
-        results = H.run_pool(jobs, args.jobs, H.log)
+        results = H.run_pool(jobs, args.jobs, H.log, args.scheduler)
     except H.StepError as e:
         H.die(str(e), "simplify")
     rows = [r for n in names for r in results["simplify " + n]]

@@ -7,7 +7,7 @@ MG_PACKAGES=(
   libcgal-dev libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev libopenvdb-dev clang libclang-rt-14-dev
   povray povray-includes meshlab xvfb xauth
-  python3 python3-matplotlib python3-numpy python3-dev pybind11-dev
+  python3 python3-matplotlib python3-numpy python3-dev pybind11-dev python3-distributed
 )
 
 # Debian's interpreter: it sees the python3-* packages (a pyenv or venv python3 on PATH does not).
