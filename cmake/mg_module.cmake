@@ -31,6 +31,7 @@ function(mg_add_library target)
   target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
                                               $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(${target} PUBLIC ${A_PUBLIC} PRIVATE ${A_PRIVATE})
+  target_compile_features(${target} PUBLIC cxx_std_17)  # the headers use C++17, for users too
   mg_set_warnings(${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${A_ALIAS})
   install(TARGETS ${target} EXPORT garbingTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})

@@ -49,12 +49,18 @@ std::vector<Vector3d> points_of(const Doubles& a, const char* name) {
   return out;
 }
 
-/// An (m, K) integer array as index tuples in [0, n); `name` in messages.
+/// An (m, K) integer array (any integer dtype) as index tuples in [0, n); an empty array of
+/// shape (0,) or (0, K) is none. `name` in messages.
 template <std::size_t K>
-std::vector<std::array<int, K>> indices_of(const Ints& a, std::size_t n, const char* name) {
-  if (a.size() == 0) return {};
-  if (a.ndim() != 2 || a.shape(1) != static_cast<py::ssize_t>(K))
+std::vector<std::array<int, K>> indices_of(const py::array& raw, std::size_t n, const char* name) {
+  const char kind = raw.dtype().kind();
+  if (kind != 'i' && kind != 'u')
+    bad(std::string(name) + ": expected an integer array, got dtype " +
+        std::string(py::str(raw.dtype())));
+  if (raw.ndim() == 1 && raw.shape(0) == 0) return {};
+  if (raw.ndim() != 2 || raw.shape(1) != static_cast<py::ssize_t>(K))
     bad(std::string(name) + ": expected an integer array of shape (m, " + std::to_string(K) + ")");
+  const Ints a = Ints::ensure(raw);
   const auto v = a.unchecked<2>();
   std::vector<std::array<int, K>> out(static_cast<std::size_t>(a.shape(0)));
   for (py::ssize_t i = 0; i < a.shape(0); ++i)
@@ -69,19 +75,21 @@ std::vector<std::array<int, K>> indices_of(const Ints& a, std::size_t n, const c
 }
 
 /// A triangle mesh (V, F) as a polygon soup, checked as every reader checks files.
-mg::PolygonSoup soup_of(const Doubles& vertices, const Ints& faces, const char* name) {
+mg::PolygonSoup soup_of(const Doubles& vertices, const py::array& faces, const char* name) {
   mg::PolygonSoup soup;
   soup.points = points_of(vertices, (std::string(name) + " vertices").c_str());
   for (const auto& f :
        indices_of<3>(faces, soup.points.size(), (std::string(name) + " faces").c_str()))
     soup.faces.push_back({f[0], f[1], f[2]});
+  if (soup.faces.empty()) bad(std::string(name) + ": no faces");
   mg::validate_soup(soup, name);
   return soup;
 }
 
 /// Atoms from centres (n, 3), radii (n,) and optional edges (m, 2) and faces (k, 3).
 mg::MedialSurface atoms_of(const Doubles& centres, const Doubles& radii,
-                           const std::optional<Ints>& edges, const std::optional<Ints>& faces) {
+                           const std::optional<py::array>& edges,
+                           const std::optional<py::array>& faces) {
   const std::vector<Vector3d> c = points_of(centres, "centres");
   if (radii.ndim() != 1 || radii.shape(0) != static_cast<py::ssize_t>(c.size()))
     bad("radii: expected an array of shape (" + std::to_string(c.size()) + ",), one per centre");
@@ -130,10 +138,16 @@ std::unique_ptr<tbb::global_control> limit(int threads) {
                                                static_cast<std::size_t>(threads));
 }
 
-py::tuple skeletonize(const Doubles& vertices, const Ints& faces, const std::string& samples,
-                      std::uint64_t seed, double merge_tol, bool clamp_radius, double drop_isolated,
-                      bool connectivity, std::size_t simplify, int threads) {
+py::tuple skeletonize(const Doubles& vertices, const py::array& faces,
+                      const py::object& samples_arg, std::uint64_t seed, double merge_tol,
+                      bool clamp_radius, double drop_isolated, bool connectivity,
+                      std::size_t simplify, int threads) {
   mg::skeletonize::SkeletonOptions opt;
+  // samples: 'vertices', 'midpoints' or a count (an int, or its digits), as --samples.
+  if (!py::isinstance<py::int_>(samples_arg) && !py::isinstance<py::str>(samples_arg))
+    bad("samples: expected vertices, midpoints or a count, got " +
+        std::string(py::str(py::repr(samples_arg))));
+  const std::string samples = std::string(py::str(samples_arg));
   if (samples == "midpoints") {
     opt.edge_midpoints = true;
   } else if (samples != "vertices") {
@@ -171,31 +185,34 @@ py::tuple skeletonize(const Doubles& vertices, const Ints& faces, const std::str
   return py::make_tuple(all[0], all[1]);
 }
 
-py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional<Ints>& edges,
-               const std::optional<Ints>& faces, int min_depth, int max_depth,
+py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional<py::array>& edges,
+               const std::optional<py::array>& faces, int min_depth, int max_depth,
                const std::string& primitives, const std::optional<std::string>& cones,
-               double cone_filter, double cone_collar, bool spheres_only, int refine, bool dual,
-               double max_travel, int repair_rounds, double max_gap, int threads) {
+               const std::optional<double>& cone_filter, const std::optional<double>& cone_collar,
+               bool spheres_only, int refine, bool dual, double max_travel, int repair_rounds,
+               double max_gap, int threads) {
   namespace gb = mg::garbing;
   const mg::MedialSurface atoms = atoms_of(centres, radii, edges, faces);
   gb::GarbOptions opt;
   if (min_depth < 0) bad("min_depth must be >= 0, got " + std::to_string(min_depth));
   if (max_depth < 1 || max_depth > 20)
     bad("max_depth must be in [1, 20], got " + std::to_string(max_depth));
-  if (!(cone_filter >= 0 && cone_filter <= 1))
-    bad("cone_filter must be in [0, 1], got " + std::to_string(cone_filter));
-  if (!(cone_collar >= 0)) bad("cone_collar must be >= 0, got " + std::to_string(cone_collar));
+  if (cone_filter && !(*cone_filter >= 0 && *cone_filter <= 1))
+    bad("cone_filter must be in [0, 1], got " + std::to_string(*cone_filter));
+  if (cone_collar && !(*cone_collar >= 0))
+    bad("cone_collar must be >= 0, got " + std::to_string(*cone_collar));
   opt.octree.min_depth = min_depth;
   opt.octree.max_depth = max_depth;
   opt.primitives = gb::parse_primitive_set(primitives);
   opt.cones.source =
       spheres_only ? gb::ConeSource::none : gb::parse_cone_source(cones.value_or("rt"));
-  opt.cones.min_circle_ratio = cone_filter;
-  opt.cones.max_collar = cone_collar;
-  // As `garb`: choosing cones means the atoms' balls and cones, not an envelope.
-  if (cones || spheres_only) {
+  if (cone_filter) opt.cones.min_circle_ratio = *cone_filter;
+  if (cone_collar) opt.cones.max_collar = *cone_collar;
+  // As `garb`: any cone option means the atoms' balls and cones, not an envelope.
+  if (cones || cone_filter || cone_collar || spheres_only) {
     if (opt.primitives == gb::PrimitiveSet::envelope)
-      bad("cones and spheres_only choose the cones of primitives='rt', not 'ma'");
+      bad("cones, cone_filter, cone_collar and spheres_only choose the cones of "
+          "primitives='rt', not 'ma'");
     opt.primitives = gb::PrimitiveSet::atoms;
   }
   opt.refine.subdivisions = refine;
@@ -246,7 +263,7 @@ py::dict one_sided(const mg::evaluate::OneSidedDistance& d, double diagonal) {
                   py::arg("mean") = d.mean, py::arg("rms") = d.rms, py::arg("samples") = d.samples);
 }
 
-py::dict distance(const Doubles& va, const Ints& fa, const Doubles& vb, const Ints& fb,
+py::dict distance(const Doubles& va, const py::array& fa, const Doubles& vb, const py::array& fb,
                   std::size_t samples, std::uint64_t seed, bool faces_only, int threads) {
   const mg::PolygonSoup a = soup_of(va, fa, "mesh"), b = soup_of(vb, fb, "reference");
   mg::evaluate::MeshDistanceOptions opt;
@@ -272,11 +289,12 @@ py::dict distance(const Doubles& va, const Ints& fa, const Doubles& vb, const In
                   py::arg("reference_to_mesh") = one_sided(d.distance.b_to_a, diag));
 }
 
-py::dict check(const Doubles& vertices, const Ints& faces) {
+py::dict check(const Doubles& vertices, const py::array& faces, int threads) {
   const mg::PolygonSoup soup = soup_of(vertices, faces, "mesh");
   mg::evaluate::MeshCheck c;
   {
     py::gil_scoped_release release;
+    const auto limited = limit(threads);
     c = mg::evaluate::check_mesh(soup);
   }
   const mg::MeshTopology& t = c.topology;
@@ -324,14 +342,16 @@ Returns (centres (k, 3), radii (k,)) or, with connectivity or simplify,
   m.def("garb", &garb, py::arg("centres"), py::arg("radii"), py::arg("edges") = py::none(),
         py::arg("faces") = py::none(), py::kw_only(), py::arg("min_depth") = 0,
         py::arg("max_depth") = 14, py::arg("primitives") = "auto", py::arg("cones") = py::none(),
-        py::arg("cone_filter") = 0.9, py::arg("cone_collar") = 1.0, py::arg("spheres_only") = false,
-        py::arg("refine") = 0, py::arg("dual") = true, py::arg("max_travel") = 4.0,
-        py::arg("repair_rounds") = 8, py::arg("max_gap") = 0.5, py::arg("threads") = 0,
+        py::arg("cone_filter") = py::none(), py::arg("cone_collar") = py::none(),
+        py::arg("spheres_only") = false, py::arg("refine") = 0, py::arg("dual") = true,
+        py::arg("max_travel") = 4.0, py::arg("repair_rounds") = 8, py::arg("max_gap") = 0.5,
+        py::arg("threads") = 0,
         R"(The garbing of medial atoms, as `garb`: a closed triangle mesh M2.
 
 centres (n, 3) float64, radii (n,); edges (e, 2) and faces (f, 3) make a medial mesh whose
 envelope (balls, cones, slabs) is garbed (primitives='auto' or 'ma'); 'rt' garbs the balls and
-the cones of `cones` ('rt', 'all', 'edges', 'none'). The other options are garb's.
+the cones of `cones` ('rt', 'all', 'edges', 'none'). cone_filter and cone_collar (garb's defaults 0.9 and 1), like cones, mean primitives='rt'.
+The other options are garb's.
 Returns (vertices (v, 3) float64, faces (t, 3) int32, stats dict). Raises ValueError on bad input.)");
   m.def("distance", &distance, py::arg("mesh_vertices"), py::arg("mesh_faces"),
         py::arg("reference_vertices"), py::arg("reference_faces"), py::kw_only(),
@@ -341,18 +361,29 @@ Returns (vertices (v, 3) float64, faces (t, 3) int32, stats dict). Raises ValueE
 `evaluate distance` (percentages of the reference's bounding-box diagonal).
 Returns a dict: diagonal, hausdorff(_pct), rms(_pct), mean(_pct), samples, and both one-sided
 distances.)");
-  m.def("check", &check, py::arg("vertices"), py::arg("faces"),
+  m.def("check", &check, py::arg("vertices"), py::arg("faces"), py::kw_only(),
+        py::arg("threads") = 0,
         R"(Validity of a triangle mesh, as `evaluate check`: closed, manifold, oriented,
 components, euler, genus, intersecting triangle pairs, degenerate triangles, minimum angle.)");
   m.def(
-      "read_ma", [](const std::string& path) { return atoms_tuple(mg::read_medial_surface(path)); },
+      "read_ma",
+      [](const std::string& path) {
+        mg::MedialSurface s;
+        {
+          py::gil_scoped_release release;
+          s = mg::read_medial_surface(path);
+        }
+        return atoms_tuple(s);
+      },
       py::arg("path"),
       "Reads a .ma file: (centres (n, 3), radii (n,), edges (e, 2) int32, faces (f, 3) int32).");
   m.def(
       "write_ma",
       [](const std::string& path, const Doubles& centres, const Doubles& radii,
-         const std::optional<Ints>& edges, const std::optional<Ints>& faces) {
-        mg::write_medial_surface(atoms_of(centres, radii, edges, faces), path);
+         const std::optional<py::array>& edges, const std::optional<py::array>& faces) {
+        const mg::MedialSurface s = atoms_of(centres, radii, edges, faces);
+        py::gil_scoped_release release;
+        mg::write_medial_surface(s, path);
       },
       py::arg("path"), py::arg("centres"), py::arg("radii"), py::arg("edges") = py::none(),
       py::arg("faces") = py::none(),

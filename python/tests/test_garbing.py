@@ -87,9 +87,13 @@ class Garbing(unittest.TestCase):
         np.testing.assert_array_equal(v4, read_off(self.path("ring4.off"))[0])
         self.assertEqual(s4["min_depth"], 4)
 
-    def test_medial_mesh_envelope_equals_the_program(self):
+    def write_slab(self):
         ma = self.path("slab.ma")
         run("models", "generate", "medial-slab", "-o", ma)
+        return ma
+
+    def test_medial_mesh_envelope_equals_the_program(self):
+        ma = self.write_slab()
         centres, radii, edges, faces = garbing.read_ma(ma)
         self.assertEqual(faces.shape[1], 3)
         run("garb", ma, "-o", self.path("slab.off"))
@@ -106,6 +110,11 @@ class Garbing(unittest.TestCase):
         centres, radii = garbing.skeletonize(v, f, clamp_radius=True)
         np.testing.assert_array_equal(centres, c_cli)
         np.testing.assert_array_equal(radii, r_cli)
+        # Random samples: a count as an int or as the program's digits.
+        run("skeletonize", off, "-o", self.path("r.ma"), "--samples", 2000)
+        c_cli = garbing.read_ma(self.path("r.ma"))[0]
+        for samples in (2000, "2000"):
+            np.testing.assert_array_equal(garbing.skeletonize(v, f, samples=samples)[0], c_cli)
         # Simplified, with connectivity: four arrays, as `skeletonize --simplify 20`.
         run("skeletonize", off, "-o", self.path("s.ma"), "--clamp-radius", "--simplify", 20)
         expected = garbing.read_ma(self.path("s.ma"))
@@ -167,6 +176,20 @@ class Garbing(unittest.TestCase):
         with self.assertRaises(ValueError) as e:
             garbing.skeletonize(v, f, samples="many")
         self.assertIn("samples: expected vertices, midpoints or a count", str(e.exception))
+        with self.assertRaises(ValueError) as e:  # indices must be integers, not truncated
+            garbing.check(np.zeros((3, 3)), np.array([[0.0, 1.9, 2.2]]))
+        self.assertIn("mesh faces: expected an integer array, got dtype float64", str(e.exception))
+        for no_faces in (np.array([], dtype=int), np.zeros((0, 3), dtype=int)):
+            with self.assertRaises(ValueError) as e:
+                garbing.check(np.zeros((3, 3)), no_faces)
+            self.assertIn("mesh: no faces", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            garbing.skeletonize(v, f, samples=2.5)
+        self.assertIn("samples: expected vertices, midpoints or a count, got 2.5", str(e.exception))
+        c, r, e_, f_ = garbing.read_ma(self.write_slab())
+        with self.assertRaises(ValueError) as e:  # a cone option on an envelope, as garb says
+            garbing.garb(c, r, e_, f_, primitives="ma", cone_filter=0.5)
+        self.assertIn("choose the cones of primitives='rt', not 'ma'", str(e.exception))
         with self.assertRaises(OSError) as e:
             garbing.read_ma(self.path("missing.ma"))
         self.assertIn("missing.ma", str(e.exception))
