@@ -131,9 +131,9 @@ def fmt(x):
 def executor(workers, scheduler=None):
     """The jobs' executor (a concurrent.futures.Executor): the local process pool with
     `workers` processes, or, given a Dask scheduler's address, that cluster's workers
-    (Debian's python3-distributed). Dask workers must see the build and work folders at the
-    same paths (a shared file system) and find these modules (added to their path here; workers
-    joining later need PYTHONPATH=<repo>/experiments): docs/experiments.md."""
+    (Debian's python3-distributed). Dask workers must see the repository, the build and the
+    work folders at the same paths (a shared file system); a worker plugin puts this folder on
+    their module path: docs/experiments.md."""
     if not scheduler:
         with concurrent.futures.ProcessPoolExecutor(max_workers=workers) as pool:
             yield pool
@@ -144,13 +144,25 @@ def executor(workers, scheduler=None):
         raise StepError("--scheduler needs Dask's distributed (Debian: python3-distributed)")
     try:
         client = distributed.Client(scheduler, timeout=15)
-    except OSError as e:
+    except (OSError, ValueError) as e:  # unreachable; a malformed address
         raise StepError("cannot reach the Dask scheduler at %s: %s" % (scheduler, e))
+
+    class ExperimentsPath(distributed.WorkerPlugin):
+        """Makes the experiment modules importable on every worker, present or joining later
+        (the jobs are pickled by reference to them; this class, local, travels by value)."""
+
+        def __init__(self, folder):
+            self.folder = folder
+
+        def setup(self, worker):
+            if self.folder not in sys.path:
+                sys.path.insert(0, self.folder)
+
     try:
-        # The jobs are pickled by reference to these modules: make them importable on each
-        # worker (a lambda travels by value; a function of this module would need it there).
-        client.run(lambda folder: None if folder in sys.path else sys.path.insert(0, folder),
-                   HERE)
+        try:
+            client.register_worker_plugin(ExperimentsPath(HERE), name="mg-experiments-path")
+        except Exception as e:  # a worker that cannot take it: one line, not a traceback
+            raise StepError("Dask scheduler at %s: cannot set up the workers: %s" % (scheduler, e))
         with client.get_executor(pure=False) as pool:
             yield pool
     finally:

@@ -138,6 +138,7 @@ def main(argv):
                     "(host:port; default: a local process pool of --jobs)")
     ap.add_argument("--results", help="write the results here instead of results/")
     args = ap.parse_args(argv)
+    args.build = os.path.abspath(args.build)  # the jobs may run elsewhere (--scheduler)
     names = args.models.split(",") if args.models else (QUICK if args.quick else MODELS)
     unknown = [n for n in names if n not in MODELS]
     if unknown:

@@ -2,7 +2,8 @@
 """experiments/reproduce.py --quick on a local Dask cluster of two worker processes
 (--scheduler) writes the same tables, byte for byte, as on the local process pool: every file
 without a measured time or memory figure (atoms, smoothness, the baselines' table, Table 1
-less its peak-memory column). An unreachable scheduler is one line and exit 1.
+less its peak-memory column). An unreachable or malformed scheduler address is one line and
+exit 1.
 
 Usage: dask_test.py BUILD
 """
@@ -49,11 +50,13 @@ class Dask(unittest.TestCase):
             self.assertEqual(len([x for x in rows if x["source"] == "ours"]), 3)
             self.assertEqual(rows, table1(os.path.join(remote, "table1.csv")))
 
-    def test_unreachable_scheduler(self):
-        with tempfile.TemporaryDirectory() as out:
-            r = reproduce(out, "--scheduler", "tcp://127.0.0.1:9")
-            self.assertEqual(r.returncode, 1)
-            self.assertIn("cannot reach the Dask scheduler at tcp://127.0.0.1:9", r.stderr)
+    def test_unreachable_or_malformed_scheduler(self):
+        for address in ("tcp://127.0.0.1:9", "localhost"):  # nothing there; no port
+            with tempfile.TemporaryDirectory() as out:
+                r = reproduce(out, "--scheduler", address)
+                self.assertEqual(r.returncode, 1)
+                self.assertIn("cannot reach the Dask scheduler at %s" % address, r.stderr)
+                self.assertNotIn("Traceback", r.stderr)
 
 
 if __name__ == "__main__":
