@@ -16,7 +16,10 @@
 #include "skeletonize/sphere_quadric.h"
 #include "skeletonize/union_topology.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
@@ -136,6 +139,11 @@ struct Corner {
 /// SimplifyOptions' to theirs, doubling.
 constexpr double kBoundSteps = 8;
 
+/// The collapse loop's batches: at most kBatch candidates checked together, found among at
+/// most kBatch + kBatchScan fresh ones (see collapse_edges).
+constexpr std::size_t kBatch = 8;
+constexpr std::size_t kBatchScan = 16;
+
 struct Candidate {
   double cost;
   int a, b;  // a < b
@@ -251,7 +259,7 @@ class Simplifier {
 
   template <class T>
   static void sort_unique(std::vector<T>& v) {
-    std::sort(v.begin(), v.end());
+    tbb::parallel_sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
 
@@ -281,9 +289,8 @@ class Simplifier {
       add_triangle({c[0], c[2], c[3]});
       add_triangle({c[1], c[2], c[3]});
     }
-    sort_unique(edges);
-    sort_unique(triangles);
-    sort_unique(tetrahedra);
+    tbb::parallel_invoke([&] { sort_unique(edges); }, [&] { sort_unique(triangles); },
+                         [&] { sort_unique(tetrahedra); });
     auto& s = out_.stats;
     s.atoms_before = atoms.size();
     s.edges_before = edges.size();
@@ -345,15 +352,25 @@ class Simplifier {
       double overlap;
       int i, j;
     };
+    // The pairs of meeting balls in different components: each has an atom outside the
+    // largest component, so only those atoms' balls are searched.
+    std::vector<int> size(n, 0);
+    for (int i = 0; i < n; ++i) ++size[find(i)];
+    const int largest =
+        n > 0 ? static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin()) : -1;
     std::vector<Join> joins;
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < n; ++i) {
+      if (find(i) == largest) continue;
       tree_->find_meeting(atoms[i].centre, atoms[i].radius, [&](int j) {
-        if (j > i && find(i) != find(j))
+        const int root = find(j);
+        // A pair of two atoms outside the largest component is met from both: kept once.
+        if (root != find(i) && (root == largest || j > i))
           joins.push_back(
-              {atoms[i].radius + atoms[j].radius - (atoms[i].centre - atoms[j].centre).norm(), i,
-               j});
+              {atoms[i].radius + atoms[j].radius - (atoms[i].centre - atoms[j].centre).norm(),
+               std::min(i, j), std::max(i, j)});
         return false;
       });
+    }
     std::sort(joins.begin(), joins.end(), [](const Join& x, const Join& y) {
       if (x.overlap != y.overlap) return x.overlap > y.overlap;
       return std::tie(x.i, x.j) < std::tie(y.i, y.j);
@@ -384,9 +401,13 @@ class Simplifier {
   /// y's depth in one of them, or in the union of two (pair_depth); when a bound already keeps
   /// the excess at most `over`, it is returned (an upper bound), otherwise the exact distance is
   /// queried.
+  ///
+  /// With `decide`, only whether the excess passes `over` is needed: when it does not, `over`
+  /// itself may be returned, and the exact query is first a test for a point of the mesh closer
+  /// than r - over.
   template <std::size_t N>
-  double ball_excess(const std::array<Corner, N>& c, const std::array<double, N>& w,
-                     double over) const {
+  double ball_excess(const std::array<Corner, N>& c, const std::array<double, N>& w, double over,
+                     bool decide = false) const {
     Vec3 y = Vec3::Zero();
     double r = 0;
     for (std::size_t k = 0; k < N; ++k) {
@@ -415,6 +436,11 @@ class Simplifier {
     // Exact: the centre may have left the object (a new cone or slab's axis crossing its
     // boundary), then the ball sticks out by r + d. The inside test only where it decides:
     // y in an inscribed ball (lower > 0) is inside, and r - d over `over` is refused anyway.
+    if (decide && !solid_->within(y, r - over)) {
+      // r - d <= over: enough where y is inside (certified, or tested); outside, r + d.
+      if (lower > 0 || solid_->contains(y)) return over;
+      return r + solid_->distance(y, *c[nearest].anchor);
+    }
     const double d = solid_->distance(y, *c[nearest].anchor);
     if (lower > 0 || r - d > over) return r - d;
     return solid_->contains(y) ? r - d : r + d;
@@ -429,29 +455,30 @@ class Simplifier {
   /// Estimated excess of a cone (the hull of two spheres): at interpolated balls spaced by at
   /// most half the smaller radius (at least the middle one, at most 15). Exact queries only
   /// where the certified bound passes `over` (see ball_excess).
-  double cone_excess(const Corner& p, const Corner& q, double over) const {
+  double cone_excess(const Corner& p, const Corner& q, double over, bool decide = false) const {
     const MedialAtom &a = *p.sphere, &b = *q.sphere;
     const int n = samples_along((a.centre - b.centre).norm(), std::min(a.radius, b.radius));
     double worst = -INFINITY;
     for (int k = 1; k <= n; ++k) {
       const double t = static_cast<double>(k) / (n + 1);
-      worst = std::max(worst, ball_excess<2>({p, q}, {1 - t, t}, over));
+      worst = std::max(worst, ball_excess<2>({p, q}, {1 - t, t}, over, decide));
     }
     return worst;
   }
 
   /// Estimated excess of a slab (the hull of three spheres) away from its edges: at the
   /// centroid and the interior points of a barycentric grid spaced as the cones'.
-  double slab_excess(const Corner& p, const Corner& q, const Corner& r, double over) const {
+  double slab_excess(const Corner& p, const Corner& q, const Corner& r, double over,
+                     bool decide = false) const {
     const MedialAtom &a = *p.sphere, &b = *q.sphere, &c = *r.sphere;
     const double longest = std::max(
         {(a.centre - b.centre).norm(), (b.centre - c.centre).norm(), (c.centre - a.centre).norm()});
     const int n = samples_along(longest, std::min({a.radius, b.radius, c.radius})) + 1;
-    double worst = ball_excess<3>({p, q, r}, {1.0 / 3, 1.0 / 3, 1.0 / 3}, over);
+    double worst = ball_excess<3>({p, q, r}, {1.0 / 3, 1.0 / 3, 1.0 / 3}, over, decide);
     for (int i = 1; i < n; ++i)
       for (int j = 1; i + j < n; ++j) {
         const double u = static_cast<double>(i) / n, v = static_cast<double>(j) / n;
-        worst = std::max(worst, ball_excess<3>({p, q, r}, {1 - u - v, u, v}, over));
+        worst = std::max(worst, ball_excess<3>({p, q, r}, {1 - u - v, u, v}, over, decide));
       }
     return worst;
   }
@@ -754,8 +781,11 @@ class Simplifier {
   /// that the ball sticks out of the object no further than the input atoms merged into a or b
   /// did (0 for clamped poles): r <= distance(centre, mesh) + their overshoot, and the error
   /// re-evaluated. (The queue's costs are first computed without it, see collapse_edges.)
+  /// With `nearest`, the mesh's point closest to the merged centre is written there when the
+  /// clamp queried it (`*queried`).
   Candidate evaluate(int a, int b, bool clamp, MergedAtom* merged = nullptr,
-                     bool* clamped = nullptr) const {
+                     bool* clamped = nullptr, Vec3* nearest = nullptr,
+                     bool* queried = nullptr) const {
     SphereQuadric q = quadric_[a];
     q += quadric_[b];
     MergedAtom m = place_merged_atom(q, spheres_[a], spheres_[b]);
@@ -765,7 +795,14 @@ class Simplifier {
       const double lower = std::max(depth_[a] - (m.atom.centre - spheres_[a].centre).norm(),
                                     depth_[b] - (m.atom.centre - spheres_[b].centre).norm());
       if (m.atom.radius > lower + allowed) {
-        const double d = solid_->distance(m.atom.centre, anchor_[a]) + allowed;
+        double d;
+        if (nearest) {
+          *nearest = solid_->closest_point(m.atom.centre, anchor_[a]);
+          *queried = true;
+          d = (m.atom.centre - *nearest).norm() + allowed;
+        } else {
+          d = solid_->distance(m.atom.centre, anchor_[a]) + allowed;
+        }
         if (m.atom.radius > d && d > 0) {
           m.atom.radius = d;
           m.error = q.error(m.atom);
@@ -792,7 +829,7 @@ class Simplifier {
       const int other = side == a ? b : a;
       for (int u : complex_->neighbours(side)) {
         if (u == other || (side == b && complex_->has_edge(a, u))) continue;
-        worst = std::max(worst, cone_excess(m, corner(u), over));
+        worst = std::max(worst, cone_excess(m, corner(u), over, true));
         if (worst > over) return worst;
       }
       for (const Pair& p : complex_->triangle_links(side)) {
@@ -800,7 +837,7 @@ class Simplifier {
         Triple t = {a, p[0], p[1]};
         std::sort(t.begin(), t.end());
         if (side == b && complex_->has_triangle(t)) continue;
-        worst = std::max(worst, slab_excess(m, corner(p[0]), corner(p[1]), over));
+        worst = std::max(worst, slab_excess(m, corner(p[0]), corner(p[1]), over, true));
         if (worst > over) return worst;
       }
     }
@@ -896,6 +933,75 @@ class Simplifier {
     return solid_->contains(p);
   }
 
+  /// What the checks of a collapse found, in the order the collapse loop applies them (the
+  /// first refusal ends them). Computed from the state alone, without side effects: the
+  /// candidates of a batch are checked in parallel.
+  struct Check {
+    enum class Stage { topology, back, outside, shortfall, excess, passed };
+    Stage stage = Stage::passed;  // the refusal, or passed
+    std::size_t loops = 0;        // the loops the collapse contracts
+    MergedAtom m;                 // the merged atom, clamped
+    bool clamped = false;
+    Candidate exact{};  // the candidate at the clamped atom's cost
+    double shortfall = 0;
+    std::pair<int, std::size_t> culprit{-1, 0};  // the sample that refused it (shortfall)
+    Vec3 anchor = Vec3::Zero();                  // the mesh's point closest to m's centre
+    double depth = 0, overshoot = 0, excess = 0;
+  };
+
+  /// Checks the collapse of candidate c at the bounds' `scale`. It reads the data of c's atoms,
+  /// of their neighbours and the complex's simplices on them, nothing else that collapses
+  /// change: a collapse of {x, y} changes the data of x and y and the stars of N[x] and N[y].
+  ///
+  /// `next`: the candidate after c (none: the last). When clamping raises c's cost past it, c
+  /// goes back in line with its clamped cost (stage back).
+  Check check(const Candidate& c, double scale, const Candidate* next) const {
+    Check r;
+    // The loops the collapse contracts: each must be covered by its three balls (then it is
+    // no tunnel of the envelope).
+    const auto loops = complex_->free_link_components(c.a, c.b);
+    const bool keeps_tunnels = std::all_of(loops.begin(), loops.end(), [&](const auto& comp) {
+      return std::any_of(comp.begin(), comp.end(), [&](int x) {
+        return covered_by_balls(spheres_[c.a], spheres_[c.b], spheres_[x]);
+      });
+    });
+    if (!keeps_tunnels) {
+      r.stage = Check::Stage::topology;
+      return r;
+    }
+    r.loops = loops.size();
+    bool queried = false;
+    r.exact = evaluate(c.a, c.b, true, &r.m, &r.clamped, &r.anchor, &queried);
+    if (!c.clamped && r.exact.cost > c.cost && next && LaterCandidate{}(r.exact, *next)) {
+      r.stage = Check::Stage::back;
+      return r;
+    }
+    if (!inside(r.m.atom.centre, c.a, c.b)) {
+      r.stage = Check::Stage::outside;
+      return r;
+    }
+    if (delta_ > 0) {
+      const double allowed = scale * delta_;
+      r.shortfall = star_shortfall(c.a, c.b, r.m.atom, allowed, nullptr, &r.culprit);
+      if (r.shortfall > allowed) {
+        r.stage = Check::Stage::shortfall;
+        return r;
+      }
+    }
+    if (!queried) r.anchor = solid_->closest_point(r.m.atom.centre, anchor_[c.a]);
+    r.depth = (r.m.atom.centre - r.anchor).norm();
+    r.overshoot = std::max(overshoot_[c.a], overshoot_[c.b]);
+    if (tau_ > 0) {
+      const double allowed = std::max(scale * tau_, r.overshoot);
+      r.excess = star_excess(c.a, c.b, {&r.m.atom, &r.anchor, r.depth}, allowed);
+      if (r.excess > allowed) {
+        r.stage = Check::Stage::excess;
+        return r;
+      }
+    }
+    return r;
+  }
+
   void collapse_edges() {
     auto& st = out_.stats;
     version_.assign(spheres_.size(), 0);
@@ -932,6 +1038,32 @@ class Simplifier {
     };
     std::vector<Refused> refused;
     auto refuse = [&](const Candidate& c, double needs) { refused.push_back({c, needs}); };
+    auto stale = [&](const Candidate& c) {
+      return !complex_->alive(c.a) || !complex_->alive(c.b) || c.version_a != version_[c.a] ||
+             c.version_b != version_[c.b];
+    };
+    // The candidates are taken a batch at a time: the first kBatch fresh ones in queue order
+    // whose atoms are not neighbours of (nor equal to) an earlier one's (the others wait in
+    // the queue), checked in parallel and applied in order. Such a candidate's check reads
+    // nothing an earlier one's collapse or refusal changes (see check()), so it finds what it
+    // would find after them; what the batch changes is the order (the edges a collapse pushes
+    // wait for the next batch). The batch depends on the queue alone: the same result at any
+    // thread count.
+    std::vector<Candidate> batch, skipped;
+    std::vector<Check> checks;
+    std::vector<char> near(complex_->vertex_slots(), 0);  // N[a] u N[b] of the batch's edges
+    std::vector<int> near_list;
+    auto mark = [&](int v) {
+      for (int u : complex_->neighbours(v))
+        if (!near[u]) {
+          near[u] = 1;
+          near_list.push_back(u);
+        }
+      if (!near[v]) {
+        near[v] = 1;
+        near_list.push_back(v);
+      }
+    };
     while (complex_->vertices() > target) {
       if (queue.empty()) {
         if (round_collapses == 0) {
@@ -943,9 +1075,7 @@ class Simplifier {
         std::vector<Refused> waiting;
         for (const Refused& r : refused) {
           const Candidate& c = r.candidate;
-          if (!complex_->alive(c.a) || !complex_->alive(c.b) || c.version_a != version_[c.a] ||
-              c.version_b != version_[c.b])
-            continue;
+          if (stale(c)) continue;
           if (r.needs <= scale)
             queue.push(evaluate(c.a, c.b, false));
           else
@@ -954,82 +1084,99 @@ class Simplifier {
         refused = std::move(waiting);
         continue;
       }
-      const Candidate c = queue.top();
-      queue.pop();
-      if (!complex_->alive(c.a) || !complex_->alive(c.b) || c.version_a != version_[c.a] ||
-          c.version_b != version_[c.b])
-        continue;
-      // The loops the collapse contracts: each must be covered by its three balls (then it is
-      // no tunnel of the envelope).
-      const auto loops = complex_->free_link_components(c.a, c.b);
-      const bool keeps_tunnels = std::all_of(loops.begin(), loops.end(), [&](const auto& comp) {
-        return std::any_of(comp.begin(), comp.end(), [&](int x) {
-          return covered_by_balls(spheres_[c.a], spheres_[c.b], spheres_[x]);
-        });
+      batch.clear();
+      skipped.clear();
+      const long room = complex_->vertices() - target;  // collapses left
+      while (batch.size() < kBatch && static_cast<long>(batch.size()) < room &&
+             skipped.size() < kBatchScan && !queue.empty()) {
+        const Candidate c = queue.top();
+        queue.pop();
+        if (stale(c)) continue;
+        if (near[c.a] || near[c.b]) {
+          skipped.push_back(c);
+          continue;
+        }
+        batch.push_back(c);
+        mark(c.a);
+        mark(c.b);
+      }
+      for (int v : near_list) near[v] = 0;
+      near_list.clear();
+      for (const Candidate& c : skipped) queue.push(c);
+      // The candidate after each one (for the clamp's back-in-line test).
+      std::vector<const Candidate*> next(batch.size(), nullptr);
+      for (std::size_t k = 0; k < batch.size(); ++k) {
+        const Candidate* n = k + 1 < batch.size() ? &batch[k + 1] : nullptr;
+        if (!queue.empty() && (!n || LaterCandidate{}(*n, queue.top()))) n = &queue.top();
+        next[k] = n;
+      }
+      checks.resize(batch.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.size(), 1),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i)
+                            checks[i] = check(batch[i], scale, next[i]);
+                        });
+      std::vector<Candidate> later;  // what the batch pushes back in line
+      std::vector<Pair> pushes;      // the edges its collapses leave
+      for (std::size_t k = 0; k < batch.size(); ++k) {
+        const Candidate& c = batch[k];
+        const Check& r = checks[k];
+        switch (r.stage) {
+          case Check::Stage::topology:
+            ++st.refused_topology;
+            refuse(c, 0);
+            continue;
+          case Check::Stage::back:
+            // Clamping raised its cost past the next candidate's: back in line.
+            later.push_back(r.exact);
+            continue;
+          case Check::Stage::outside:
+            ++st.refused_outside;  // the same atoms give the same centre: not retried
+            continue;
+          case Check::Stage::shortfall:
+            if (r.culprit.first >= 0) {
+              auto& list = samples_of_[r.culprit.first];
+              std::swap(list[0], list[r.culprit.second]);
+            }
+            ++st.refused_shortfall;
+            refuse(c, r.shortfall / delta_);
+            continue;
+          case Check::Stage::excess:
+            ++st.refused_excess;
+            refuse(c, r.excess / tau_);
+            continue;
+          case Check::Stage::passed:
+            break;
+        }
+        complex_->collapse(c.a, c.b);
+        ++st.collapses;
+        ++round_collapses;
+        st.contracted_loops += r.loops;
+        st.clamped_radii += r.clamped;
+        const MergedAtom& m = r.m;
+        st.max_error = std::max(st.max_error, m.error);
+        (m.placement == Placement::minimiser           ? st.placed_minimiser
+         : m.placement == Placement::nearest_minimiser ? st.placed_nearest_minimiser
+                                                       : st.placed_fallback) += 1;
+        spheres_[c.a] = m.atom;
+        quadric_[c.a] += quadric_[c.b];
+        samples_of_[c.a].insert(samples_of_[c.a].end(), samples_of_[c.b].begin(),
+                                samples_of_[c.b].end());
+        samples_of_[c.b] = {};
+        anchor_[c.a] = r.anchor;
+        depth_[c.a] = r.depth;
+        overshoot_[c.a] = r.overshoot;
+        ++version_[c.a];
+        for (int u : complex_->neighbours(c.a))
+          pushes.push_back({std::min(u, c.a), std::max(u, c.a)});
+      }
+      // The new edges' costs: a later collapse of the batch changes none of their atoms.
+      const std::size_t first = later.size();
+      later.resize(first + pushes.size());
+      tbb::parallel_for(std::size_t(0), pushes.size(), [&](std::size_t i) {
+        later[first + i] = evaluate(pushes[i][0], pushes[i][1], false);
       });
-      if (!keeps_tunnels) {
-        ++st.refused_topology;
-        refuse(c, 0);
-        continue;
-      }
-      MergedAtom m;
-      bool clamped = false;
-      const Candidate exact = evaluate(c.a, c.b, true, &m, &clamped);
-      if (!c.clamped && exact.cost > c.cost && !queue.empty() &&
-          LaterCandidate{}(exact, queue.top())) {
-        queue.push(exact);  // clamping raised its cost past the next one: back in line
-        continue;
-      }
-      if (!inside(m.atom.centre, c.a, c.b)) {
-        ++st.refused_outside;  // the same atoms give the same centre: not retried
-        continue;
-      }
-      if (delta_ > 0) {
-        const double allowed = scale * delta_;
-        std::pair<int, std::size_t> culprit{-1, 0};
-        const double shortfall = star_shortfall(c.a, c.b, m.atom, allowed, nullptr, &culprit);
-        if (shortfall > allowed) {
-          if (culprit.first >= 0) {
-            auto& list = samples_of_[culprit.first];
-            std::swap(list[0], list[culprit.second]);
-          }
-          ++st.refused_shortfall;
-          refuse(c, shortfall / delta_);
-          continue;
-        }
-      }
-      const Vec3 anchor = solid_->closest_point(m.atom.centre);
-      const double depth = (m.atom.centre - anchor).norm();
-      const double overshoot = std::max(overshoot_[c.a], overshoot_[c.b]);
-      if (tau_ > 0) {
-        const double allowed = std::max(scale * tau_, overshoot);
-        const double excess = star_excess(c.a, c.b, {&m.atom, &anchor, depth}, allowed);
-        if (excess > allowed) {
-          ++st.refused_excess;
-          refuse(c, excess / tau_);
-          continue;
-        }
-      }
-      complex_->collapse(c.a, c.b);
-      ++st.collapses;
-      ++round_collapses;
-      st.contracted_loops += loops.size();
-      st.clamped_radii += clamped;
-      st.max_error = std::max(st.max_error, m.error);
-      (m.placement == Placement::minimiser           ? st.placed_minimiser
-       : m.placement == Placement::nearest_minimiser ? st.placed_nearest_minimiser
-                                                     : st.placed_fallback) += 1;
-      spheres_[c.a] = m.atom;
-      quadric_[c.a] += quadric_[c.b];
-      samples_of_[c.a].insert(samples_of_[c.a].end(), samples_of_[c.b].begin(),
-                              samples_of_[c.b].end());
-      samples_of_[c.b] = {};
-      anchor_[c.a] = anchor;
-      depth_[c.a] = depth;
-      overshoot_[c.a] = overshoot;
-      ++version_[c.a];
-      for (int u : complex_->neighbours(c.a))
-        queue.push(evaluate(std::min(u, c.a), std::max(u, c.a), false));
+      for (const Candidate& c : later) queue.push(c);
     }
     st.target_reached = complex_->vertices() <= target;
   }

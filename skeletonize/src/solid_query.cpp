@@ -37,6 +37,38 @@ SurfaceMesh triangle_mesh(const PolygonSoup& soup) {
   return sm;
 }
 
+/// The traversal of within(): stops at the first triangle closer than the radius, descending
+/// only into boxes closer than it (plain doubles, as the distance queries).
+class WithinTraversal {
+ public:
+  WithinTraversal(const PlainTree& tree, double radius) : tree_(&tree), r2_(radius * radius) {}
+  bool go_further() const { return !found_; }
+  void intersection(const Point& p, const Primitive& primitive) {
+    const auto& t = CGAL::internal::Primitive_helper<PlainTree::AABB_traits>::get_datum(
+        primitive, tree_->traits());
+    if (detail::squared_plain(p, detail::closest_on_triangle(p, t)) < r2_) found_ = true;
+  }
+  template <class Node>
+  bool do_intersect(const Point& p, const Node& node) const {
+    const CGAL::Bbox_3& box = node.bbox();
+    double d = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = p[k];
+      if (c < box.min(k))
+        d += (box.min(k) - c) * (box.min(k) - c);
+      else if (c > box.max(k))
+        d += (c - box.max(k)) * (c - box.max(k));
+    }
+    return d < r2_;
+  }
+  bool found() const { return found_; }
+
+ private:
+  const PlainTree* tree_;
+  double r2_;
+  bool found_ = false;
+};
+
 }  // namespace
 
 struct SolidQuery::Impl {
@@ -85,6 +117,21 @@ Vec3 SolidQuery::closest_point(const Vec3& p) const {
   const Point q = impl_->plain ? impl_->plain->closest_point(to_point(p))
                                : impl_->tree->closest_point(to_point(p));
   return {q.x(), q.y(), q.z()};
+}
+
+bool SolidQuery::within(const Vec3& p, double radius) const {
+  if (!(radius > 0)) return false;
+  if (!impl_->plain) return impl_->tree->squared_distance(to_point(p)) < radius * radius;
+  WithinTraversal traversal(*impl_->plain, radius);
+  impl_->plain->traversal(to_point(p), traversal);
+  return traversal.found();
+}
+
+Vec3 SolidQuery::closest_point(const Vec3& p, const Vec3& hint) const {
+  const Point q = to_point(p), h = to_point(hint);
+  const Point c =
+      impl_->plain ? impl_->plain->closest_point(q, h) : impl_->tree->closest_point(q, h);
+  return {c.x(), c.y(), c.z()};
 }
 
 int SolidQuery::closest_triangle(const Vec3& p) const {

@@ -32,8 +32,12 @@ class SolidQuery {
   double distance(const Eigen::Vector3d& p) const;
   /// The same, starting the search from `hint`, a point on the mesh (a sample) near the answer.
   double distance(const Eigen::Vector3d& p, const Eigen::Vector3d& hint) const;
+  /// Whether some point of the mesh lies closer than `radius` to p (false for radius <= 0).
+  bool within(const Eigen::Vector3d& p, double radius) const;
   /// The closest point of the mesh to p.
   Eigen::Vector3d closest_point(const Eigen::Vector3d& p) const;
+  /// The same, starting the search from `hint`, a point on the mesh near the answer.
+  Eigen::Vector3d closest_point(const Eigen::Vector3d& p, const Eigen::Vector3d& hint) const;
   /// The triangle closest to p: its index in fan_triangles(mesh) (ties: the tree's first).
   int closest_triangle(const Eigen::Vector3d& p) const;
   /// Segment [a, b] meets no mesh face and its midpoint is inside.
