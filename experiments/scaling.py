@@ -4,7 +4,7 @@
 The bumpy torus generated at three resolutions (`models generate bumpy-torus --ring R --tube T`,
 R x T vertices), skeletonized from its vertices with `--merge-tol 0` (every vertex pole kept:
 about one atom per vertex), garbed with its default options (`garb --stats`: seconds per phase,
-peak memory), and the same balls meshed by OpenVDB (`evaluate vdb`, the union of the spheres) at
+peak memory and its high-water mark at the end of each phase), and the same balls meshed by OpenVDB (`evaluate vdb`, the union of the spheres) at
 M2's vertex count. One program at a time, smallest size first, so times and memory are not
 shared with another job; each program's figures are one run (the 1M-atom garbing takes about a
 minute). The log-log slope of each phase from the middle size to the largest is what issue 20
@@ -27,10 +27,12 @@ SIZES = {"10k": (126, 80), "100k": (400, 250), "1m": (1260, 800)}
 PHASES = ["cones", "octree", "m1", "m2"]  # garb --stats "seconds" keys: the garbing's phases
 
 COLUMNS = ["size", "vertices", "atoms", "skeletonize_s", "m2_v", "depth", "leaves",
-           "garbing_s", "cones_s", "octree_s", "m1_s", "m2_s", "peak_mb", "vdb_v", "vdb_voxel",
+           "garbing_s", "cones_s", "octree_s", "m1_s", "m2_s", "peak_mb", "peak_mb_cones",
+           "peak_mb_octree", "peak_mb_m1", "peak_mb_m2", "vdb_v", "vdb_voxel",
            "vdb_s", "vdb_peak_mb", "vdb_over_garbing_s", "garbing_over_vdb_mb"]
 HEADERS = ["size", "mesh V", "atoms", "skeletonize s", "M2 V", "depth", "leaves", "garbing s",
-           "cones s", "octree s", "M1 s", "M2 s", "garbing peak MB", "OpenVDB V",
+           "cones s", "octree s", "M1 s", "M2 s", "garbing peak MB", "peak MB after cones",
+           "after octree", "after M1", "after M2", "OpenVDB V",
            "OpenVDB voxel", "OpenVDB s", "OpenVDB peak MB", "OpenVDB s / garbing s",
            "garbing MB / OpenVDB MB"]
 
@@ -52,6 +54,8 @@ def size_row(R, size, progress):
            "garbing_s": g["seconds"]["garbing"], "peak_mb": g["peak_memory_mb"]}
     for phase in PHASES:
         row[phase + "_s"] = g["seconds"][phase]
+        # The process's high-water mark at the end of the phase: where the peak is reached.
+        row["peak_mb_" + phase] = g["peak_memory_mb_by_phase"][phase]
     progress("%s: OpenVDB at %d vertices" % (size, row["m2_v"]))
     v = R.run("evaluate", "vdb", atoms, "-o", R.path(size, "vdb.off"), "--match-vertices",
               row["m2_v"], "--json", label="%s vdb --match-vertices" % size)

@@ -41,6 +41,11 @@ class Scaling(unittest.TestCase):
             self.assertLess(abs(vdb_v - m2_v), 0.05 * m2_v)
             for key in ("garbing_s", "octree_s", "peak_mb", "vdb_s", "vdb_peak_mb"):
                 self.assertGreater(float(row[key]), 0, key)
+            # High-water marks at the end of each phase: rising, up to the program's peak.
+            marks = [float(row["peak_mb_" + p]) for p in ("cones", "octree", "m1", "m2")]
+            self.assertGreater(marks[0], 0)
+            self.assertEqual(marks, sorted(marks))
+            self.assertLessEqual(marks[-1], float(row["peak_mb"]))
             self.assertTrue(os.path.getsize(os.path.join(results, "scaling.png")) > 0)
             with open(os.path.join(results, "scaling.md")) as f:
                 self.assertIn("| 10k | 10080 |", f.read())

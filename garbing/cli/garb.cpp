@@ -152,6 +152,10 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
                            {"matches", check->matches()},
                            {"seconds", check->seconds}};
   j["peak_memory_mb"] = peak_mb;
+  j["peak_memory_mb_by_phase"] = {{"cones", r.peak_mb.target_shape},
+                                  {"octree", r.peak_mb.octree},
+                                  {"m1", r.peak_mb.m1},
+                                  {"m2", r.peak_mb.m2}};
   j["seconds"] = {{"read", seconds_read},
                   {"octree", r.seconds.octree},
                   {"m1", r.seconds.m1},

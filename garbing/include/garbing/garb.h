@@ -27,6 +27,13 @@ struct GarbSeconds {
   double total() const { return target_shape + octree + m1 + m2; }
 };
 
+/// The process's peak resident memory (MB of 2^20 bytes, getrusage's high-water mark) at the
+/// end of each stage: where the peak is reached. Process-wide: it includes what the caller held
+/// before.
+struct GarbMemory {
+  double target_shape = 0, octree = 0, m1 = 0, m2 = 0;
+};
+
 /// Every stage's result, in the order they are computed.
 struct Garbing {
   TargetShape g;   ///< in the atoms' bounding cube frame
@@ -34,6 +41,7 @@ struct Garbing {
   CoarseMesh m1;   ///< step 2, world coordinates
   RefinedMesh m2;  ///< step 3, world coordinates, with its statistics
   GarbSeconds seconds;
+  GarbMemory peak_mb;
 };
 
 /// Garbs the atoms: G = make_target_shape(atoms, opt.primitives, opt.cones,
