@@ -436,6 +436,8 @@ class Simplifier {
     // Exact: the centre may have left the object (a new cone or slab's axis crossing its
     // boundary), then the ball sticks out by r + d. The inside test only where it decides:
     // y in an inscribed ball (lower > 0) is inside, and r - d over `over` is refused anyway.
+    // (The test compares squared distances, the exact path r - sqrt(d2): they may differ at
+    // the last ulp.)
     if (decide && !solid_->within(y, r - over)) {
       // r - d <= over: enough where y is inside (certified, or tested); outside, r + d.
       if (lower > 0 || solid_->contains(y)) return over;
@@ -952,6 +954,9 @@ class Simplifier {
   /// Checks the collapse of candidate c at the bounds' `scale`. It reads the data of c's atoms,
   /// of their neighbours and the complex's simplices on them, nothing else that collapses
   /// change: a collapse of {x, y} changes the data of x and y and the stars of N[x] and N[y].
+  /// (has_triangle may read a neighbour's lists, which a collapse of {x, y} relabels when that
+  /// neighbour is in N[y]; its answer for a triangle of c's atom and two vertices other than x
+  /// and y does not change.)
   ///
   /// `next`: the candidate after c (none: the last). When clamping raises c's cost past it, c
   /// goes back in line with its clamped cost (stage back).
@@ -1049,7 +1054,8 @@ class Simplifier {
     // would find after them; what the batch changes is the order (the edges a collapse pushes
     // wait for the next batch). The batch depends on the queue alone: the same result at any
     // thread count.
-    std::vector<Candidate> batch, skipped;
+    std::vector<Candidate> batch, skipped, popped;  // popped: the fresh ones, in order
+    std::vector<std::size_t> position;              // each batched one's in popped
     std::vector<Check> checks;
     std::vector<char> near(complex_->vertex_slots(), 0);  // N[a] u N[b] of the batch's edges
     std::vector<int> near_list;
@@ -1086,30 +1092,36 @@ class Simplifier {
       }
       batch.clear();
       skipped.clear();
+      popped.clear();
+      position.clear();
       const long room = complex_->vertices() - target;  // collapses left
       while (batch.size() < kBatch && static_cast<long>(batch.size()) < room &&
              skipped.size() < kBatchScan && !queue.empty()) {
         const Candidate c = queue.top();
         queue.pop();
         if (stale(c)) continue;
+        popped.push_back(c);
         if (near[c.a] || near[c.b]) {
           skipped.push_back(c);
           continue;
         }
+        position.push_back(popped.size() - 1);
         batch.push_back(c);
         mark(c.a);
         mark(c.b);
       }
       for (int v : near_list) near[v] = 0;
       near_list.clear();
+      // The candidate after each one in queue order (for the clamp's back-in-line test): the
+      // next one popped, batched or passed over, else what the queue holds first.
+      std::optional<Candidate> rest;
+      if (!queue.empty()) rest = queue.top();
       for (const Candidate& c : skipped) queue.push(c);
-      // The candidate after each one (for the clamp's back-in-line test).
       std::vector<const Candidate*> next(batch.size(), nullptr);
-      for (std::size_t k = 0; k < batch.size(); ++k) {
-        const Candidate* n = k + 1 < batch.size() ? &batch[k + 1] : nullptr;
-        if (!queue.empty() && (!n || LaterCandidate{}(*n, queue.top()))) n = &queue.top();
-        next[k] = n;
-      }
+      for (std::size_t k = 0; k < batch.size(); ++k)
+        next[k] = position[k] + 1 < popped.size() ? &popped[position[k] + 1]
+                  : rest                          ? &*rest
+                                                  : nullptr;
       checks.resize(batch.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.size(), 1),
                         [&](const tbb::blocked_range<std::size_t>& range) {

@@ -50,16 +50,7 @@ class WithinTraversal {
   }
   template <class Node>
   bool do_intersect(const Point& p, const Node& node) const {
-    const CGAL::Bbox_3& box = node.bbox();
-    double d = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double c = p[k];
-      if (c < box.min(k))
-        d += (box.min(k) - c) * (box.min(k) - c);
-      else if (c > box.max(k))
-        d += (c - box.max(k)) * (c - box.max(k));
-    }
-    return d < r2_;
+    return detail::box_squared_distance(p, node.bbox()) < r2_;
   }
   bool found() const { return found_; }
 
@@ -122,8 +113,11 @@ Vec3 SolidQuery::closest_point(const Vec3& p) const {
 bool SolidQuery::within(const Vec3& p, double radius) const {
   if (!(radius > 0)) return false;
   if (!impl_->plain) return impl_->tree->squared_distance(to_point(p)) < radius * radius;
+  // (CGAL's traversal starts below the root without testing its box.)
+  const Point q = to_point(p);
+  if (!(detail::box_squared_distance(q, impl_->plain->bbox()) < radius * radius)) return false;
   WithinTraversal traversal(*impl_->plain, radius);
-  impl_->plain->traversal(to_point(p), traversal);
+  impl_->plain->traversal(q, traversal);
   return traversal.found();
 }
 

@@ -66,6 +66,19 @@ inline double squared_plain(const CGAL::Epick::Point_3& a, const CGAL::Epick::Po
   return x * x + y * y + z * z;
 }
 
+/// Squared distance from p to a closed box (0 inside), plain doubles.
+inline double box_squared_distance(const CGAL::Epick::Point_3& p, const CGAL::Bbox_3& box) {
+  double d = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double c = p[k];
+    if (c < box.min(k))
+      d += (box.min(k) - c) * (box.min(k) - c);
+    else if (c > box.max(k))
+      d += (c - box.max(k)) * (c - box.max(k));
+  }
+  return d;
+}
+
 /// CGAL::AABB_traits<Epick, Primitive> (Primitive's datum a Triangle_3) with plain-double
 /// Compare_distance and Closest_point.
 template <class Primitive>
@@ -77,15 +90,8 @@ class PlainDistanceTraits : public CGAL::AABB_traits<CGAL::Epick, Primitive> {
     /// SMALLER when the closed box meets the ball around p through `bound`.
     CGAL::Comparison_result operator()(const Point& p, const CGAL::Bbox_3& box,
                                        const Point& bound) const {
-      double d = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double c = p[k];
-        if (c < box.min(k))
-          d += (box.min(k) - c) * (box.min(k) - c);
-        else if (c > box.max(k))
-          d += (c - box.max(k)) * (c - box.max(k));
-      }
-      return d <= squared_plain(p, bound) ? CGAL::SMALLER : CGAL::LARGER;
+      return box_squared_distance(p, box) <= squared_plain(p, bound) ? CGAL::SMALLER
+                                                                     : CGAL::LARGER;
     }
   };
   class Closest_point {
