@@ -90,8 +90,7 @@ class PlainDistanceTraits : public CGAL::AABB_traits<CGAL::Epick, Primitive> {
     /// SMALLER when the closed box meets the ball around p through `bound`.
     CGAL::Comparison_result operator()(const Point& p, const CGAL::Bbox_3& box,
                                        const Point& bound) const {
-      return box_squared_distance(p, box) <= squared_plain(p, bound) ? CGAL::SMALLER
-                                                                     : CGAL::LARGER;
+      return box_squared_distance(p, box) <= squared_plain(p, bound) ? CGAL::SMALLER : CGAL::LARGER;
     }
   };
   class Closest_point {
