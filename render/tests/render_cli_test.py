@@ -167,7 +167,7 @@ class RenderCli(U.CliTestCase):
 
     def test_same_input_and_view_give_identical_bytes(self):
         # At one thread: POV-Ray 3.7 at more threads now and then shades a few pixels
-        # differently from run to run (README, render).
+        # differently from run to run (docs/reference.md, render).
         a, b, view = self.path("a.png"), self.path("b.png"), self.path("v.json")
         self.render_ok(self.sphere, self.atoms, "-o", a, "--width", str(W), "--height", str(H),
                        "--view", view, "--threads", "1")
