@@ -23,20 +23,31 @@ using Vec3 = Eigen::Vector3d;
 using Triangles = std::vector<std::array<int, 3>>;
 using Polygons = std::vector<std::vector<int>>;
 
-/// P of a leaf, shared by the vertices that migrate with it.
+struct Context;
+
+/// P of a point, shared by the vertices that migrate with it.
 using PrimitiveList = std::shared_ptr<const std::vector<PrimitiveId>>;
 
-/// What a vertex migrates with: P (shared by the vertices of one leaf), the leaf side that
-/// scales its travel, and a closed box `cover` holding the vertex's start such that P lists
-/// every primitive meeting it (no box: `cover` empty).
+/// What a vertex migrates with: P, the leaf side that scales its travel, and a closed box
+/// `cover` holding the vertex's start such that P lists every primitive meeting it (no box:
+/// `cover` empty). P is `prims` (a point's, shared by the vertices of one leaf), or that of the
+/// owning `leaf`, gathered from the octree's lists when needed (a dual vertex's: not stored,
+/// the lists are the octree's), or none.
 struct Locale {
   PrimitiveList prims;
+  int leaf = -1;
   double side = 0;
   Eigen::AlignedBox3d cover;
+  bool has_list() const { return prims || leaf >= 0; }
 };
 
-/// The primitives of a locale (none when it has no list).
-const std::vector<PrimitiveId>& list_of(const PrimitiveList& list);
+/// P of a locale, sorted, without repeats (empty when it has none): `prims`, or the leaf's
+/// gathered into `scratch`.
+const std::vector<PrimitiveId>& primitives_of(const Context& ctx, const Locale& locale,
+                                              std::vector<PrimitiveId>& scratch);
+
+/// Whether a ball of P lies within `tol` of p (P's balls are the leaf's list).
+bool ball_within(const Context& ctx, const Locale& locale, const Vec3& p, double tol);
 
 /// M2 under construction: per vertex, where it started (the fold-free dual of M1, or what
 /// subdivision and gap splitting derive from it), where it is now, and what it migrates with.

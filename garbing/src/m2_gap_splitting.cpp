@@ -82,11 +82,7 @@ bool split_gaps(Triangles& triangles, std::size_t fresh, const Context& ctx, Ver
     if ((m2.position[a] - m2.position[b]).squaredNorm() <= 4 * tol * tol) return;
     const Vec3 m = (m2.position[a] + m2.position[b]) / 2;
     // The balls of a's leaf first (cheap, and nearly always one of them is within tol).
-    for (PrimitiveId g : list_of(m2.locale[a].prims)) {
-      if (!ctx.g.is_sphere(g)) break;  // sorted: the spheres come first
-      const double r = ctx.g.sphere(g).radius + tol;
-      if ((m - ctx.g.sphere(g).centre).squaredNorm() <= r * r) return;
-    }
+    if (ball_within(ctx, m2.locale[a], m, tol)) return;
     far[e] = !ctx.g.within(m, tol);
   });
   std::vector<std::size_t> split;  // edges with a candidate vertex, in edge order

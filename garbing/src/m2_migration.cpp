@@ -74,8 +74,8 @@ int leaf_entered(const Octree& tree, const Vec3& q, const Vec3& dir) {
 /// for the caller's query over all primitives, when v lies in P, no entry comes by t_limit,
 /// or the walk crosses more than a few leaves or cannot follow the ray.
 bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Locale& locale,
-                 double t_limit, double& t) {
-  if (!ctx.opt.local_queries || !locale.prims || !locale.cover.contains(v)) return false;
+                 const std::vector<PrimitiveId>& prims, double t_limit, double& t) {
+  if (!ctx.opt.local_queries || !locale.has_list() || !locale.cover.contains(v)) return false;
   double first = std::numeric_limits<double>::infinity();
   bool inside = false;
   auto enter = [&](PrimitiveId g) {
@@ -93,7 +93,7 @@ bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Local
     if (a <= 0) inside = true;  // only a primitive of P can hold v, which lies in the cover
     first = std::min(first, a);
   };
-  for (PrimitiveId g : *locale.prims) enter(g);
+  for (PrimitiveId g : prims) enter(g);
   if (inside) return false;
   // Parameters where the line enters and leaves the closed box [lo, hi].
   const Vec3 inv = dir.cwiseInverse();
@@ -129,9 +129,28 @@ bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Local
 
 }  // namespace
 
-const std::vector<PrimitiveId>& list_of(const PrimitiveList& list) {
-  static const std::vector<PrimitiveId> none;
-  return list ? *list : none;
+const std::vector<PrimitiveId>& primitives_of(const Context& ctx, const Locale& locale,
+                                              std::vector<PrimitiveId>& scratch) {
+  scratch.clear();
+  if (locale.prims) return *locale.prims;
+  if (locale.leaf >= 0) add_leaf_primitives(ctx, locale.leaf, scratch);
+  return scratch;
+}
+
+bool ball_within(const Context& ctx, const Locale& locale, const Vec3& p, double tol) {
+  auto near = [&](PrimitiveId g) {
+    const double r = ctx.g.sphere(g).radius + tol;
+    return (p - ctx.g.sphere(g).centre).squaredNorm() <= r * r;
+  };
+  if (locale.leaf >= 0)
+    return std::any_of(ctx.tree.cells[locale.leaf].spheres.begin(),
+                       ctx.tree.cells[locale.leaf].spheres.end(), near);
+  if (!locale.prims) return false;
+  for (PrimitiveId g : *locale.prims) {
+    if (!ctx.g.is_sphere(g)) break;  // sorted: the spheres come first
+    if (near(g)) return true;
+  }
+  return false;
 }
 
 Locale leaf_locale(const Context& ctx, int leaf) {
@@ -139,11 +158,7 @@ Locale leaf_locale(const Context& ctx, int leaf) {
   const OctreeCell& owner = ctx.tree.cells[leaf];
   l.side = ctx.tree.side(owner.level);
   l.cover = ctx.tree.cube(owner);
-  // Gathered in a scratch list (repeats and slabs off the cube included), kept at its size.
-  thread_local std::vector<PrimitiveId> prims;
-  prims.clear();
-  add_leaf_primitives(ctx, leaf, prims);
-  l.prims = std::make_shared<const std::vector<PrimitiveId>>(prims.begin(), prims.end());
+  l.leaf = leaf;
   return l;
 }
 
@@ -194,8 +209,10 @@ Locale point_locale(const Context& ctx, const Vec3& p) {
 /// max_travel.
 Outcome migrate(const Context& ctx, const Vec3& v, const Locale& locale, Vec3& out) {
   const double side = locale.side;
+  thread_local std::vector<PrimitiveId> scratch;
+  const std::vector<PrimitiveId>& prims = primitives_of(ctx, locale, scratch);
   Vec3 m = Vec3::Zero();
-  for (PrimitiveId g : list_of(locale.prims)) m -= ctx.g.migration_vector(g, v);
+  for (PrimitiveId g : prims) m -= ctx.g.migration_vector(g, v);
   const double norm = m.norm();
   if (!(norm > 1e-12)) {
     out = ctx.g.closest_point(v);
@@ -203,7 +220,7 @@ Outcome migrate(const Context& ctx, const Vec3& v, const Locale& locale, Vec3& o
   }
   const Vec3 dir = m / norm;
   double t;
-  if (local_entry(ctx, v, dir, locale, ctx.opt.max_travel * side, t)) {
+  if (local_entry(ctx, v, dir, locale, prims, ctx.opt.max_travel * side, t)) {
     out = v + t * dir;
     return Outcome::ray;
   }
