@@ -783,11 +783,10 @@ class Simplifier {
   /// that the ball sticks out of the object no further than the input atoms merged into a or b
   /// did (0 for clamped poles): r <= distance(centre, mesh) + their overshoot, and the error
   /// re-evaluated. (The queue's costs are first computed without it, see collapse_edges.)
-  /// With `nearest`, the mesh's point closest to the merged centre is written there when the
-  /// clamp queried it (`*queried`).
+  /// With `nearest`, the mesh's point closest to the merged centre is kept there when the
+  /// clamp queried it.
   Candidate evaluate(int a, int b, bool clamp, MergedAtom* merged = nullptr,
-                     bool* clamped = nullptr, Vec3* nearest = nullptr,
-                     bool* queried = nullptr) const {
+                     bool* clamped = nullptr, std::optional<Vec3>* nearest = nullptr) const {
     SphereQuadric q = quadric_[a];
     q += quadric_[b];
     MergedAtom m = place_merged_atom(q, spheres_[a], spheres_[b]);
@@ -797,14 +796,9 @@ class Simplifier {
       const double lower = std::max(depth_[a] - (m.atom.centre - spheres_[a].centre).norm(),
                                     depth_[b] - (m.atom.centre - spheres_[b].centre).norm());
       if (m.atom.radius > lower + allowed) {
-        double d;
-        if (nearest) {
-          *nearest = solid_->closest_point(m.atom.centre, anchor_[a]);
-          *queried = true;
-          d = (m.atom.centre - *nearest).norm() + allowed;
-        } else {
-          d = solid_->distance(m.atom.centre, anchor_[a]) + allowed;
-        }
+        const Vec3 p = solid_->closest_point(m.atom.centre, anchor_[a]);
+        if (nearest) *nearest = p;
+        const double d = (m.atom.centre - p).norm() + allowed;
         if (m.atom.radius > d && d > 0) {
           m.atom.radius = d;
           m.error = q.error(m.atom);
@@ -975,8 +969,8 @@ class Simplifier {
       return r;
     }
     r.loops = loops.size();
-    bool queried = false;
-    r.exact = evaluate(c.a, c.b, true, &r.m, &r.clamped, &r.anchor, &queried);
+    std::optional<Vec3> nearest;
+    r.exact = evaluate(c.a, c.b, true, &r.m, &r.clamped, &nearest);
     if (!c.clamped && r.exact.cost > c.cost && next && LaterCandidate{}(r.exact, *next)) {
       r.stage = Check::Stage::back;
       return r;
@@ -993,7 +987,7 @@ class Simplifier {
         return r;
       }
     }
-    if (!queried) r.anchor = solid_->closest_point(r.m.atom.centre, anchor_[c.a]);
+    r.anchor = nearest ? *nearest : solid_->closest_point(r.m.atom.centre, anchor_[c.a]);
     r.depth = (r.m.atom.centre - r.anchor).norm();
     r.overshoot = std::max(overshoot_[c.a], overshoot_[c.b]);
     if (tau_ > 0) {
