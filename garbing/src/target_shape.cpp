@@ -77,9 +77,11 @@ TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::arra
   // change the sign of a zero).
   if (!frame_.is_world())
     for (MedialAtom& s : atoms_.atoms) s.centre = frame_.to_local(s.centre);
-  cones_.reserve(pairs.size());
-  for (const auto& p : pairs)
-    cones_.push_back(make_cone(atoms_.atoms[p[0]], atoms_.atoms[p[1]], p[0], p[1]));
+  cones_.resize(pairs.size());
+  tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t k) {
+    const auto& p = pairs[k];
+    cones_[k] = make_cone(atoms_.atoms[p[0]], atoms_.atoms[p[1]], p[0], p[1]);
+  });
   const std::size_t n = atoms_.atoms.size();
   index_by_atom(
       n, cones_.size(), static_cast<int>(n),
@@ -99,11 +101,13 @@ TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::arra
       slabs_by_atom_start_, slabs_by_atom_);
   // The hierarchy holds each primitive's own piece: a slab's prism (its balls and edge hulls
   // are primitives of G), none for a slab without tangent triangles.
-  std::vector<detail::Box> boxes;
-  boxes.reserve(primitive_count());
-  for (const auto& s : atoms_.atoms) boxes.push_back(box_of(bounding_box(s)));
-  for (const auto& c : cones_) boxes.push_back(box_of(bounding_box(c)));
-  for (const auto& s : slabs_) boxes.push_back(box_of(s.prism_box));
+  std::vector<detail::Box> boxes(primitive_count());
+  tbb::parallel_for(std::size_t(0), boxes.size(), [&](std::size_t i) {
+    const int id = static_cast<int>(i);
+    boxes[i] = is_sphere(id) ? box_of(bounding_box(atoms_.atoms[i]))
+               : is_cone(id) ? box_of(bounding_box(cone(id)))
+                             : box_of(slab(id).prism_box);
+  });
   std::vector<int> ids;
   ids.reserve(boxes.size());
   for (int i = 0; i < static_cast<int>(boxes.size()); ++i)

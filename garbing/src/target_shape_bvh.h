@@ -5,6 +5,8 @@
 
 #include "garbing/detail/line_box.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -59,7 +61,7 @@ struct TargetShape::Bvh {
     boxes = std::move(primitive_boxes);
     order = std::move(ids);
     nodes.reserve(2 * order.size() / 4 + 2);
-    if (!order.empty()) build(0, static_cast<int>(order.size()), 0);
+    if (!order.empty()) build(nodes, 0, static_cast<int>(order.size()), 0);
     // From now on boxes[i] is the box of primitive order[i]: a leaf's boxes are contiguous.
     std::vector<Box> in_order(order.size());
     for (std::size_t i = 0; i < order.size(); ++i) in_order[i] = boxes[order[i]];
@@ -137,26 +139,46 @@ struct TargetShape::Bvh {
     return std::clamp(k, 0, bins - 1);
   }
 
-  /// Depth stays under 48 + 31 (median splits below 48): the traversal stacks hold 128.
-  int build(int first, int last, int depth) {
-    const int id = static_cast<int>(nodes.size());
-    nodes.emplace_back();
+  /// Subtrees over more primitives than this are built in parallel.
+  static constexpr int kParallelBuild = 1 << 14;
+
+  /// Appends the subtree over order[first, last) to `out` in depth-first order (the left child
+  /// next, the right child at `right`), returns its root. Depth stays under 48 + 31 (median
+  /// splits below 48): the traversal stacks hold 128. Large subtrees build their two halves in
+  /// parallel into their own arrays, spliced in the same order: the same tree as one pass.
+  int build(std::vector<Node>& out, int first, int last, int depth) {
+    const int id = static_cast<int>(out.size());
+    out.emplace_back();
     Box box, centres;
     for (int i = first; i < last; ++i) {
       box.grow(boxes[order[i]]);
       const Eigen::Vector3d c = (boxes[order[i]].lo + boxes[order[i]].hi) / 2;
       centres.grow({c, c});
     }
-    nodes[id].box = box;
+    out[id].box = box;
     if (last - first <= 4) {
-      nodes[id].first = first;
-      nodes[id].count = last - first;
+      out[id].first = first;
+      out[id].count = last - first;
       return id;
     }
     const int mid = split(first, last, centres, depth < 48);
-    build(first, mid, depth + 1);
-    const int right = build(mid, last, depth + 1);
-    nodes[id].right = right;
+    if (last - first < kParallelBuild) {
+      build(out, first, mid, depth + 1);
+      const int right = build(out, mid, last, depth + 1);
+      out[id].right = right;
+      return id;
+    }
+    std::vector<Node> left, right;
+    tbb::parallel_invoke([&] { build(left, first, mid, depth + 1); },
+                         [&] { build(right, mid, last, depth + 1); });
+    for (auto* half : {&left, &right}) {
+      const int offset = static_cast<int>(out.size());
+      if (half == &right) out[id].right = offset;
+      for (Node n : *half) {
+        if (n.right >= 0) n.right += offset;
+        out.push_back(n);
+      }
+    }
     return id;
   }
 
