@@ -33,13 +33,17 @@ Json mesh_json(const mg::Mesh& mesh, const mg::MeshTopology& topo) {
 
 /// The octree: its frame and depths, the splits, and the leaves per level (active ones, and
 /// those active through a cone or slab only: a crease fill, a waist, a slab's prism).
-Json octree_json(const gb::Octree& tree, const std::vector<int>& criteria_off) {
+Json octree_json(const gb::Octree& tree, const std::vector<int>& criteria_off, bool pruned_lists) {
   std::map<int, long> per_level, active_per_level;
   long active = 0, crease_only = 0;
+  std::size_t listed_balls = 0, listed_hulls = 0, most_balls = 0;
   for (int c : tree.leaves) {
     ++per_level[tree.cells[c].level];
     if (tree.cells[c].is_active()) {
       ++active;
+      listed_balls += tree.cells[c].spheres.size();
+      listed_hulls += tree.cells[c].cones.size() + tree.cells[c].slabs.size();
+      most_balls = std::max(most_balls, tree.cells[c].spheres.size());
       if (tree.cells[c].spheres.empty()) ++crease_only;
       ++active_per_level[tree.cells[c].level];
     }
@@ -56,11 +60,17 @@ Json octree_json(const gb::Octree& tree, const std::vector<int>& criteria_off) {
   j["hit_max_depth"] = tree.hit_max_depth;
   j["depth_stopped_cells"] = tree.depth_stopped;
   j["criteria_off"] = criteria_off;
+  j["pruned_lists"] = pruned_lists;
   j["splits_by_criterion"] = tree.splits;
   j["leaves_per_level"] = levels;
   j["leaves"] = tree.leaves.size();
   j["active_leaves"] = active;
   j["crease_leaves"] = crease_only;  // active through a cone or slab only
+  // The active leaves' lists: what the criteria and the migration read per leaf.
+  j["listed_per_active_leaf"] = {
+      {"balls_mean", active ? double(listed_balls) / double(active) : 0.0},
+      {"balls_max", most_balls},
+      {"cones_and_slabs_mean", active ? double(listed_hulls) / double(active) : 0.0}};
   return j;
 }
 
@@ -140,7 +150,7 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
   const double peak_mb = mg::peak_memory_mb();  // after the topologies of M1 and M2
 
   Json j = {{"input", input}, {"atoms", atoms.atoms.size()}};
-  j.update(octree_json(r.tree, criteria_off));
+  j.update(octree_json(r.tree, criteria_off, opt.octree.prune_lists && !r.g.is_envelope()));
   j["boundary_leaves"] = owners.size();
   j["m1"] = m1;
   j["m2"] = m2;
@@ -179,6 +189,10 @@ int garb_main(int argc, char** argv) {
   app.add_option("input", input, "medial surface (.ma, or x y z r lines)")->required();
   app.add_option("-o,--output", output, "output mesh M2 (.off .obj .ply .stl)")->required();
   app.add_option("--m1", m1_path, "also write the coarse mesh M1 here");
+  bool full_lists = false;
+  app.add_flag("--full-lists", full_lists,
+               "the paper's cell lists: every ball meeting a cell (default: balls another ball "
+               "covers in the cell are left out; slower on dense atoms)");
   app.add_option("--min-depth", opt.octree.min_depth,
                  "minimal active depth d (0 = automatic: side <= rc/8)")
       ->check(mg::NonNegative);
@@ -237,6 +251,7 @@ int garb_main(int argc, char** argv) {
         throw mg::InvalidInput(stats_path + ": --stats names the mesh file " + other);
   }
   for (int k : off) opt.octree.criteria[k - 1] = false;
+  opt.octree.prune_lists = !full_lists;
   opt.cones.source = spheres_only ? gb::ConeSource::none : gb::parse_cone_source(cones);
   opt.primitives = gb::parse_primitive_set(primitives);
   const bool cone_options = app.count("--cones") + app.count("--cone-filter") +

@@ -68,9 +68,10 @@ int leaf_entered(const Octree& tree, const Vec3& q, const Vec3& dir) {
 /// The first entry at t in (0, t_limit] of the ray v + t dir into the union, from the
 /// octree's lists alone: P over the locale's cover box, then the lists of the leaves the ray
 /// crosses after it, in order. The smallest entry so far is the first into the union once
-/// it lies within the boxes crossed: a primitive entered sooner meets one of them, and each
-/// lists every primitive meeting it (an inactive leaf meets none; a leaf inside one ball,
-/// whose list omits crease cones, is never reached: its ball is entered before it). False,
+/// it lies within the boxes crossed: G within each box is the union of the primitives it
+/// lists (every primitive meeting it, or with pruned lists those that G's boundary there
+/// needs), so the union is entered there first (an inactive leaf meets none; a leaf inside one
+/// ball, whose list omits crease cones, is never reached: its ball is entered before it). False,
 /// for the caller's query over all primitives, when v lies in P, no entry comes by t_limit,
 /// or the walk crosses more than a few leaves or cannot follow the ray.
 bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Locale& locale,

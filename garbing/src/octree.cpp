@@ -18,7 +18,9 @@ using Vec3 = Eigen::Vector3d;
 /// are a pure function of the tree, so the result does not depend on thread count or order.
 class OctreeBuilder {
  public:
-  OctreeBuilder(const TargetShape& g, const OctreeOptions& opt) : g_(g), opt_(opt) {}
+  OctreeBuilder(const TargetShape& g, const OctreeOptions& opt) : g_(g), opt_(opt) {
+    if (g_.cone_count() > 0) index_cones();
+  }
 
   Octree run() {
     set_frame();
@@ -54,6 +56,61 @@ class OctreeBuilder {
                            " (raise --max-depth or set --min-depth)");
       tree_.min_depth = d;
     }
+  }
+
+  /// For the pruned lists, per entry p of G's atom-to-cones index (atom a, cone k):
+  /// cone_other_[p], k's other atom, and cone_reach_[p], how far k's crease fill reaches outside
+  /// a's ball (so B(c_a, r_a + reach) holds a's ball and the fill), cone_kappa_[p] = L^2 -
+  /// (r_b - r_a)^2 (prune_covered_balls); reach_[a], the largest reach of a's. Floats rounded
+  /// up: both only ever weaken a test.
+  void index_cones() {
+    const std::size_t n = g_.sphere_count();
+    const PrimitiveId* const base = g_.cones_of_atom(0).first;
+    const std::size_t entries =
+        static_cast<std::size_t>(g_.cones_of_atom(static_cast<int>(n) - 1).second - base);
+    reach_.assign(n, 0.0);
+    cone_other_.resize(entries);
+    cone_reach_.resize(entries);
+    cone_kappa_.resize(entries);
+    // Slack far above the rounding of the distances a reach is compared with.
+    const double slack = 1e-12 * g_.frame().cube_side;
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t a = r.begin(); a != r.end(); ++a) {
+            const auto [first, last] = g_.cones_of_atom(static_cast<int>(a));
+            double most = 0;
+            for (const PrimitiveId* id = first; id != last; ++id) {
+              const Cone& k = g_.cone(*id);
+              const bool low = k.a == static_cast<int>(a);
+              const double reach = fill_reach(k, low) * (1 + 1e-9) + slack;
+              const std::size_t p = static_cast<std::size_t>(id - base);
+              cone_other_[p] = low ? k.b : k.a;
+              cone_reach_[p] = std::nextafter(static_cast<float>(reach), INFINITY);
+              const double kappa = k.length * k.length - k.dr * k.dr;
+              cone_kappa_[p] =
+                  std::nextafter(static_cast<float>(kappa * (1 + 1e-9) + slack * slack), INFINITY);
+              most = std::max(most, static_cast<double>(cone_reach_[p]));
+            }
+            reach_[a] = most;
+          }
+        });
+  }
+
+  /// How far the cone's fill reaches outside the ball of its first (low) or second atom: the
+  /// fill lies in the profile triangle of the crease point and the two rims (primitives.h),
+  /// and the distance from the ball's centre is convex, so largest at a corner. A waist (an
+  /// envelope's disjoint balls): the frustum's bounding ball.
+  static double fill_reach(const Cone& k, bool low) {
+    const double r = low ? k.r1 : k.r2;
+    if (k.disjoint) {
+      const Vec3 c = low ? k.c1 : k.centre(1);
+      return std::max(0.0, (k.bound_centre - c).norm() + std::sqrt(k.bound_radius2) - r);
+    }
+    const double at = low ? 0 : k.length;  // the ball's centre on the profile's axis
+    const double far =
+        std::max({std::hypot(k.crease.along - at, k.crease.radius),
+                  std::hypot(k.t_lo - at, k.rho_lo), std::hypot(k.t_hi - at, k.rho_hi)});
+    return std::max(0.0, far - r);
   }
 
   bool criterion(int k) const { return opt_.criteria[k - 1]; }
@@ -471,14 +528,18 @@ class OctreeBuilder {
       child.parent = c;
       child.inside_one_ball = false;
     }
-    // masks[x]: the children met by the ball parent.spheres[x], bit k for child k.
+    // masks[x]: the children met by the ball parent.spheres[x], bit k for child k; reach[x]:
+    // those within reach_[i] of it, where the crease fills of its cones can lie.
+    const bool has_cones = g_.cone_count() > 0;
     std::vector<std::uint8_t> masks(parent.spheres.size(), 0);
+    std::vector<std::uint8_t> reach(has_cones ? parent.spheres.size() : 0, 0);
     std::array<std::size_t, 8> count = {};
     for (std::size_t x = 0; x < parent.spheres.size(); ++x) {
       const int i = parent.spheres[x];
       const Vec3& p = g_.sphere(i).centre;
       const double r = g_.sphere(i).radius;
       const double r2 = r * r;
+      const double reach2 = has_cones ? (r + reach_[i]) * (r + reach_[i]) : 0;
       double near[3][2], far[3][2];
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 2; ++b) {
@@ -493,6 +554,7 @@ class OctreeBuilder {
         d2 += near[0][b0];
         d2 += near[1][b1];
         d2 += near[2][b2];
+        if (has_cones && d2 <= reach2) reach[x] |= static_cast<std::uint8_t>(1u << k);
         if (d2 > r2) continue;
         masks[x] |= static_cast<std::uint8_t>(1u << k);
         ++count[k];
@@ -506,6 +568,15 @@ class OctreeBuilder {
         }
       }
     }
+    // Per child, the balls whose power decides what is dropped (pruned lists only).
+    thread_local std::array<std::vector<int>, 8> witnesses;
+    for (auto& w : witnesses) w.clear();
+    std::vector<std::uint8_t> full;  // the masks before pruning, when it drops a ball
+    if (prune_) {
+      full = masks;
+      if (!prune_covered_balls(parent, lo, side, masks, count, witnesses)) full.clear();
+    }
+    const std::vector<std::uint8_t>& meets = full.empty() ? masks : full;
     // The lists, sized once, in the parent's (sorted) order.
     for (int k = 0; k < 8; ++k) out[k].spheres.reserve(count[k]);
     for (std::size_t x = 0; x < parent.spheres.size(); ++x)
@@ -532,8 +603,10 @@ class OctreeBuilder {
     unsigned skip = 0;
     for (int j = 0; j < 8; ++j) skip |= static_cast<unsigned>(out[j].inside_one_ball) << j;
     if (skip == 0xFF) return;
+    // The children each ball meets: a cone one of whose balls meets a child is not listed
+    // there (a kept ball stands for it; a dropped one was dropped only with its cones covered).
     for (std::size_t x = 0; x < parent.spheres.size(); ++x)
-      mask_of_atom[parent.spheres[x]] = masks[x];
+      mask_of_atom[parent.spheres[x]] = meets[x];
     const Vec3 parent_lo(lo[0][0], lo[1][0], lo[2][0]);
     const int n = sphere_count();
     auto consider = [&](int k) {
@@ -542,18 +615,48 @@ class OctreeBuilder {
       const Cone& cone = g_.cone(n + k);
       const unsigned via_ball = mask_of_atom[cone.a] | mask_of_atom[cone.b];
       if ((via_ball | skip) == 0xFF || !near_crease_fill(cone, parent_lo, 2 * side)) return;
-      for (int j = 0; j < 8; ++j)
-        if (!(skip >> j & 1) && !(via_ball >> j & 1) &&
-            fill_meets_cube(cone, Vec3(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]),
-                            side))
-          out[j].cones.push_back(k);
+      for (int j = 0; j < 8; ++j) {
+        if ((skip >> j & 1) || (via_ball >> j & 1)) continue;
+        const Vec3 child_lo(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]);
+        if (!fill_meets_cube(cone, child_lo, side)) continue;
+        // Pruned lists: a cone whose solid the child's witness ball covers there is not G's
+        // boundary in it either.
+        if (std::any_of(witnesses[j].begin(), witnesses[j].end(),
+                        [&](int w) { return hull_dominated(cone, w, child_lo, side); }))
+          continue;
+        out[j].cones.push_back(k);
+      }
     };
     for (int k : parent.cones) consider(k);
-    for (std::size_t x = 0; x < parent.spheres.size(); ++x)
-      if (masks[x] != 0xFF) {
-        const auto [first, last] = g_.cones_of_atom(parent.spheres[x]);
-        for (const PrimitiveId* id = first; id != last; ++id) consider(*id - n);
+    // A cone's fill lies within reach_ of each of its balls: only a ball reaching a child it
+    // does not meet (outside one ball) can have a cone to list there.
+    const PrimitiveId* const cone_base = g_.cones_of_atom(0).first;
+    for (std::size_t x = 0; x < parent.spheres.size(); ++x) {
+      if ((reach[x] & ~meets[x] & ~skip & 0xFF) == 0) continue;
+      const int i = parent.spheres[x];
+      const Vec3& p = g_.sphere(i).centre;
+      double d2[8];  // squared distances from the centre to the children
+      for (int j = 0; j < 8; ++j) {
+        d2[j] = 0;
+        for (int a = 0; a < 3; ++a) {
+          const int b = (j >> a) & 1;
+          const double d = std::max({lo[a][b] - p[a], 0.0, p[a] - hi[a][b]});
+          d2[j] += d * d;
+        }
       }
+      const auto [first, last] = g_.cones_of_atom(i);
+      for (const PrimitiveId* id = first; id != last; ++id) {
+        const std::size_t e = static_cast<std::size_t>(id - cone_base);
+        const unsigned open = reach[x] & ~(meets[x] | skip | mask_of_atom[cone_other_[e]]) & 0xFF;
+        if (open == 0) continue;
+        const double grown = g_.sphere(i).radius + cone_reach_[e];
+        for (int j = 0; j < 8; ++j)
+          if ((open >> j & 1) && d2[j] <= grown * grown) {
+            consider(*id - n);
+            break;
+          }
+      }
+    }
     // Slabs(child): the slabs whose prism meets the cube where none of their balls does (the
     // rest of a slab's solid is its edge hulls, listed above as cones or balls).
     const int first_slab = g_.slab_id(0);
@@ -578,7 +681,7 @@ class OctreeBuilder {
     if (g_.slab_count() > 0) {
       for (int k : parent.slabs) consider_slab(k);
       for (std::size_t x = 0; x < parent.spheres.size(); ++x)
-        if (masks[x] != 0xFF) {
+        if (meets[x] != 0xFF) {
           const auto [first, last] = g_.slabs_of_atom(parent.spheres[x]);
           for (const PrimitiveId* id = first; id != last; ++id) consider_slab(*id - first_slab);
         }
@@ -590,6 +693,158 @@ class OctreeBuilder {
       if (g_.is_envelope() && !child.inside_one_ball)
         child.inside_one_hull = inside_a_listed_hull(child);
     }
+  }
+
+  /// min over the closed cube [clo, clo + side] of pow_i - pow_w (pow_k(x) = |x - c_k|^2 -
+  /// r_k^2), from the affine difference's worst corner: where it exceeds the margin, ball w
+  /// holds every point of B_i in the cube.
+  double power_gap(int i, int w, const Vec3& clo, double side) const {
+    const Vec3& c = g_.sphere(i).centre;
+    const double r = g_.sphere(i).radius;
+    const Vec3& cw = g_.sphere(w).centre;
+    const double rw = g_.sphere(w).radius;
+    double d = cw.squaredNorm() - rw * rw - c.squaredNorm() + r * r;
+    for (int a = 0; a < 3; ++a) {
+      const double slope = 2 * (c[a] - cw[a]);
+      d += slope * (slope > 0 ? clo[a] + side : clo[a]);
+    }
+    return -d;
+  }
+
+  /// Whether the solid of a cone meets the closed cube [clo, clo + side] only inside ball w:
+  /// pow_w(x) < pow_t(x) - margin for every x of the cube and every interpolated ball t in
+  /// [0, 1] (a point of the solid has pow_t <= 0 for some t). For a fixed sign pattern of
+  /// c(t) - c_w the worst x is a fixed corner and pow_w - pow_t is concave in t; the patterns
+  /// change at most three times along [0, 1], so the maximum is found piece by piece.
+  bool hull_dominated(const Cone& k, int w, const Vec3& clo, double side) const {
+    const Vec3& cw = g_.sphere(w).centre;
+    const double rw = g_.sphere(w).radius;
+    const Vec3 delta = k.length * k.u;  // c2 - c1
+    double cuts[5] = {0, 1, 1, 1, 1};
+    int count = 1;
+    for (int a = 0; a < 3; ++a)
+      if (delta[a] != 0) {
+        const double t = (cw[a] - k.c1[a]) / delta[a];
+        if (t > 0 && t < 1) cuts[count++] = t;
+      }
+    cuts[count++] = 1;
+    for (int i = 1; i < count; ++i)  // insertion sort of at most five
+      for (int j = i; j > 0 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
+    const double curvature = delta.squaredNorm() - k.dr * k.dr;  // > 0: neither ball holds
+    for (int piece = 0; piece + 1 < count; ++piece) {
+      const double t0 = cuts[piece], t1 = cuts[piece + 1];
+      const Vec3 mid = k.centre((t0 + t1) / 2);
+      Vec3 x;
+      for (int a = 0; a < 3; ++a) x[a] = mid[a] > cw[a] ? clo[a] + side : clo[a];
+      // pow_t(x) is least at t = ((x - c1).delta + r1 dr) / curvature.
+      const double t = std::clamp(((x - k.c1).dot(delta) + k.r1 * k.dr) / curvature, t0, t1);
+      const double rt = k.radius(t);
+      const double d = (x - cw).squaredNorm() - rw * rw - (x - k.centre(t)).squaredNorm() + rt * rt;
+      if (!(d < -margin_)) return false;
+    }
+    return true;
+  }
+
+  /// Drops from the children's sphere masks the balls another listed ball covers inside the
+  /// child (OctreeOptions::prune_lists): ball i goes when, for a witness w of the child, the
+  /// power pow_w(x) = |x - c_w|^2 - r_w^2 lies below pow_i(x) by a margin on the whole closed
+  /// cube; then every point of the cube in B_i (pow_i <= 0) has pow_w < 0, so B_i meets the cube
+  /// only inside B_w, and dropping it leaves the union of the balls within the cube as it was.
+  /// The witnesses are the balls of least power at the child's centre, then (over the balls
+  /// left) at its eight corners; they are never dropped. A ball dropped here is dropped in every
+  /// descendant (the cube shrinks), so the children start from the parent's kept balls.
+  bool prune_covered_balls(const OctreeCell& parent, const double (&lo)[3][2], double side,
+                           std::vector<std::uint8_t>& masks, std::array<std::size_t, 8>& count,
+                           std::array<std::vector<int>, 8>& witnesses_of) const {
+    const std::size_t n = parent.spheres.size();
+    bool dropped = false;
+    auto power = [&](int i, const Vec3& q) {
+      return (q - g_.sphere(i).centre).squaredNorm() - g_.sphere(i).radius * g_.sphere(i).radius;
+    };
+    // max over the cube [clo, clo + side] of pow_w - pow_i, affine in x:
+    // 2 x.(c_i - c_w) + |c_w|^2 - r_w^2 - |c_i|^2 + r_i^2.
+    double gap = 0;  // of the last ball dominated, against its witness
+    auto dominates = [&](int w, int i, const Vec3& clo) {
+      gap = power_gap(i, w, clo, side);
+      return gap > margin_;
+    };
+    // Per atom of the parent's list, the children where it is still kept (0 for the others).
+    thread_local std::vector<std::uint8_t> kept;
+    const bool cones = !cone_other_.empty();
+    if (cones) {
+      if (kept.size() != g_.sphere_count()) kept.assign(g_.sphere_count(), 0);
+      for (std::size_t x = 0; x < n; ++x) kept[parent.spheres[x]] = masks[x];
+    }
+    const PrimitiveId* const cone_base = cones ? g_.cones_of_atom(0).first : nullptr;
+    // Whether every cone of atom i keeps its other ball j in the child (bit), or lies within
+    // the cube in the ball of the witness w that covers i (gap_i: pow_i - pow_w >= gap_i on
+    // the cube). The interpolated balls' powers are pow_t = (1 - t) pow_i + t pow_j -
+    // kappa t (1 - t), kappa = |c_j - c_i|^2 - (r_j - r_i)^2, so pow_t - pow_w >= (1 - t)
+    // gap_i + t gap_j - kappa t (1 - t): when its least value over t in [0, 1] exceeds the
+    // margin, w holds the cone in the cube. Else the exact test (hull_dominated).
+    auto cones_covered = [&](int i, double gap_i, std::uint8_t bit, int w, const Vec3& clo) {
+      const auto [first, last] = g_.cones_of_atom(i);
+      for (const PrimitiveId* id = first; id != last; ++id) {
+        const std::size_t p = static_cast<std::size_t>(id - cone_base);
+        const int j = cone_other_[p];
+        if (kept[j] & bit) continue;
+        const double gap_j = power_gap(j, w, clo, side);
+        const double kappa = cone_kappa_[p];
+        const double t = std::clamp((kappa + gap_i - gap_j) / (2 * kappa), 0.0, 1.0);
+        if ((1 - t) * gap_i + t * gap_j - kappa * t * (1 - t) > margin_) continue;
+        if (!hull_dominated(g_.cone(*id), w, clo, side)) return false;
+      }
+      return true;
+    };
+    for (int k = 0; k < 8; ++k) {
+      std::vector<int>& witnesses = witnesses_of[k];
+      if (count[k] < 2) continue;
+      const std::uint8_t bit = static_cast<std::uint8_t>(1u << k);
+      const Vec3 clo(lo[0][k & 1], lo[1][(k >> 1) & 1], lo[2][(k >> 2) & 1]);
+      // The sample points: the centre first, then the corners.
+      std::array<Vec3, 9> samples;
+      samples[0] = clo + Vec3::Constant(side / 2);
+      for (int c = 0; c < 8; ++c)
+        samples[1 + c] = clo + side * Vec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+      for (int round = 0; round < 2; ++round) {
+        // Round 0 tests against the centre's witness, round 1 the balls left against the
+        // corners' (a dropped ball is never the least power at a point of the cube).
+        const std::size_t tested = witnesses.size();
+        const int first = round == 0 ? 0 : 1, last = round == 0 ? 1 : 9;
+        for (int s = first; s < last; ++s) {
+          int best = -1;
+          double best_power = 0;
+          for (std::size_t x = 0; x < n; ++x) {
+            if (!(masks[x] & bit)) continue;
+            const int i = parent.spheres[x];
+            const double pw = power(i, samples[s]);
+            if (best < 0 || pw < best_power) {  // ties: the first (lowest id)
+              best = i;
+              best_power = pw;
+            }
+          }
+          if (std::find(witnesses.begin(), witnesses.end(), best) == witnesses.end())
+            witnesses.push_back(best);
+        }
+        if (witnesses.size() == tested) continue;
+        for (std::size_t x = 0; x < n; ++x) {
+          if (!(masks[x] & bit)) continue;
+          const int i = parent.spheres[x];
+          if (std::find(witnesses.begin(), witnesses.end(), i) != witnesses.end()) continue;
+          std::size_t by = tested;
+          while (by < witnesses.size() && !dominates(witnesses[by], i, clo)) ++by;
+          if (by == witnesses.size()) continue;
+          if (cones && !cones_covered(i, gap, bit, witnesses[by], clo)) continue;
+          masks[x] = static_cast<std::uint8_t>(masks[x] & ~bit);
+          if (cones) kept[i] = masks[x];
+          --count[k];
+          dropped = true;
+        }
+      }
+    }
+    if (cones)
+      for (std::size_t x = 0; x < n; ++x) kept[parent.spheres[x]] = 0;
+    return dropped;
   }
 
   /// Whether the closed cube of a cell lies inside the solid of one of its listed cones or the
@@ -644,6 +899,15 @@ class OctreeBuilder {
   const TargetShape& g_;
   const OctreeOptions& opt_;
   const bool joined_by_edges_ = g_.is_envelope();  // atoms joined by the medial mesh
+  /// Balls covered in a cell by another are left out of its lists (OctreeOptions::prune_lists;
+  /// not for an envelope, whose full sets read every hull of a listed ball).
+  const bool prune_ = opt_.prune_lists && !g_.is_envelope();
+  /// The power margin of a drop: far above the rounding of powers in the root's frame.
+  const double margin_ = 1e-12 * g_.frame().cube_side * g_.frame().cube_side;
+  std::vector<double> reach_;      // per atom (index_cones)
+  std::vector<int> cone_other_;    // per entry of G's atom-to-cones index (index_cones)
+  std::vector<float> cone_reach_;  // per entry of G's atom-to-cones index (index_cones)
+  std::vector<float> cone_kappa_;  // per entry of G's atom-to-cones index (index_cones)
   Octree tree_;
 };
 

@@ -42,6 +42,26 @@ class GarbCli(U.CliTestCase):
             self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(open(self.path("t1.off"), "rb").read(), open(self.path("t2.off"), "rb").read())
 
+    def test_full_lists_keep_every_ball_the_default_prunes_dense_ones(self):
+        # A dense double row of overlapping balls: most cells meet many that others cover.
+        ma = self.write("row.ma", "".join("%r %r 0 0.4\n" % (0.02 * k, 0.05 * (k % 2)) for k in range(120)))
+        per = {}
+        for name, extra in (("pruned", ()), ("full", ("--full-lists",))):
+            r = run(ma, "-o", self.path(name + ".off"), "--stats", self.path(name + ".json"), *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            per[name] = json.load(open(self.path(name + ".json")))
+            self.assertTrue(per[name]["m2"]["closed"])
+            self.assertEqual(per[name]["m2"]["genus"], 0)
+        self.assertTrue(per["pruned"]["pruned_lists"])
+        self.assertFalse(per["full"]["pruned_lists"])
+        self.assertLess(2 * per["pruned"]["listed_per_active_leaf"]["balls_mean"],
+                        per["full"]["listed_per_active_leaf"]["balls_mean"])
+        # An envelope's lists are never pruned.
+        capsule = self.write("c.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
+        r = run(capsule, "-o", self.path("c.off"), "--stats", self.path("c.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertFalse(json.load(open(self.path("c.json")))["pruned_lists"])
+
     def test_medial_mesh_garbs_its_envelope(self):
         # Two disjoint balls joined by an edge: one capsule; their balls alone: two spheres.
         ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
