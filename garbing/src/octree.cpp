@@ -784,8 +784,13 @@ class OctreeBuilder {
     // margin, w holds the cone in the cube. Else the exact test (hull_dominated).
     auto cones_covered = [&](int i, double gap_i, std::uint8_t bit, int w, const Vec3& clo) {
       const auto [first, last] = g_.cones_of_atom(i);
+      const double r = g_.sphere(i).radius;
       for (const PrimitiveId* id = first; id != last; ++id) {
         const std::size_t p = static_cast<std::size_t>(id - cone_base);
+        // First from i alone: the fill lies in B(c_i, r + reach), whose power is pow_i -
+        // reach (2 r + reach); the balls themselves are held (i by w, j kept or held too).
+        const double reach = cone_reach_[p];
+        if (gap_i - reach * (2 * r + reach) > margin_) continue;
         const int j = cone_other_[p];
         if (kept[j] & bit) continue;
         const double gap_j = power_gap(j, w, clo, side);
