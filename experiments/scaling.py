@@ -4,8 +4,9 @@
 The bumpy torus generated at three resolutions (`models generate bumpy-torus --ring R --tube T`,
 R x T vertices), skeletonized from its vertices with `--merge-tol 0` (every vertex pole kept:
 about one atom per vertex), garbed with its default options (`garb --stats`: seconds per phase,
-peak memory and its high-water mark at the end of each phase), and the same balls meshed by OpenVDB (`evaluate vdb`, the union of the spheres) at
-M2's vertex count. One program at a time, smallest size first, so times and memory are not
+peak memory and its high-water mark at the end of each phase), garbed again with the paper's
+cell lists (`--full-lists`), and the same balls meshed by OpenVDB (`evaluate vdb`, the union of
+the spheres) at M2's vertex count. One program at a time, smallest size first, so times and memory are not
 shared with another job; each program's figures are one run (the 1M-atom garbing takes about a
 minute). The log-log slope of each phase from the middle size to the largest is what issue 20
 bounds (<= 0.3 for the garbing: the output's size does not grow). Writes
@@ -26,15 +27,18 @@ import harness as H  # noqa: E402
 SIZES = {"10k": (126, 80), "100k": (400, 250), "1m": (1260, 800)}
 PHASES = ["cones", "octree", "m1", "m2"]  # garb --stats "seconds" keys: the garbing's phases
 
-COLUMNS = ["size", "vertices", "atoms", "skeletonize_s", "m2_v", "depth", "leaves",
+COLUMNS = ["size", "vertices", "atoms", "skeletonize_s", "m2_v", "depth", "leaves", "balls_per_leaf",
            "garbing_s", "cones_s", "octree_s", "m1_s", "m2_s", "peak_mb", "peak_mb_cones",
            "peak_mb_octree", "peak_mb_m1", "peak_mb_m2", "vdb_v", "vdb_voxel",
-           "vdb_s", "vdb_peak_mb", "vdb_over_garbing_s", "garbing_over_vdb_mb"]
-HEADERS = ["size", "mesh V", "atoms", "skeletonize s", "M2 V", "depth", "leaves", "garbing s",
+           "vdb_s", "vdb_peak_mb", "vdb_over_garbing_s", "garbing_over_vdb_mb", "full_balls_per_leaf",
+           "full_garbing_s", "full_octree_s", "full_m2_s", "full_peak_mb"]
+HEADERS = ["size", "mesh V", "atoms", "skeletonize s", "M2 V", "depth", "leaves", "balls per active leaf",
+           "garbing s",
            "cones s", "octree s", "M1 s", "M2 s", "garbing peak MB", "peak MB after cones",
            "after octree", "after M1", "after M2", "OpenVDB V",
            "OpenVDB voxel", "OpenVDB s", "OpenVDB peak MB", "OpenVDB s / garbing s",
-           "garbing MB / OpenVDB MB"]
+           "garbing MB / OpenVDB MB", "--full-lists: balls per active leaf", "garbing s",
+           "octree s", "M2 s", "peak MB"]
 
 
 def size_row(R, size, progress):
@@ -51,11 +55,19 @@ def size_row(R, size, progress):
     row = {"size": size, "vertices": ring * tube, "atoms": sk["atoms"],
            "skeletonize_s": sk["seconds"]["total"], "m2_v": g["m2"]["vertices"],
            "depth": g["depth"], "leaves": sum(x["leaves"] for x in g["leaves_per_level"]),
+           "balls_per_leaf": g["listed_per_active_leaf"]["balls_mean"],
            "garbing_s": g["seconds"]["garbing"], "peak_mb": g["peak_memory_mb"]}
     for phase in PHASES:
         row[phase + "_s"] = g["seconds"][phase]
         # The process's high-water mark at the end of the phase: where the peak is reached.
         row["peak_mb_" + phase] = g["peak_memory_mb_by_phase"][phase]
+    # The paper's lists (--full-lists) on the same atoms: what the pruned lists change.
+    progress("%s: garb --full-lists" % size)
+    f = R.run_stats("garb", atoms, "-o", R.path(size, "m2_full.off"), "--full-lists",
+                    stats=R.path(size, "garb_full.json"), label="%s garb --full-lists" % size)
+    row.update({"full_balls_per_leaf": f["listed_per_active_leaf"]["balls_mean"],
+                "full_garbing_s": f["seconds"]["garbing"], "full_octree_s": f["seconds"]["octree"],
+                "full_m2_s": f["seconds"]["m2"], "full_peak_mb": f["peak_memory_mb"]})
     progress("%s: OpenVDB at %d vertices" % (size, row["m2_v"]))
     v = R.run("evaluate", "vdb", atoms, "-o", R.path(size, "vdb.off"), "--match-vertices",
               row["m2_v"], "--json", label="%s vdb --match-vertices" % size)
@@ -134,7 +146,8 @@ def main(argv):
              "The bumpy torus at R x T vertices, skeletonized from its vertices with "
              "`--merge-tol 0`, garbed with default options (2 threads), and OpenVDB's mesh of "
              "the same balls at M2's vertex count (`evaluate vdb --match-vertices`, then timed "
-             "alone at the voxel found). One program at a time; one run each.", "",
+             "alone at the voxel found); the last columns garb the same atoms with the paper's "
+             "cell lists (`--full-lists`). One program at a time; one run each.", "",
              "Command: `/usr/bin/python3 experiments/scaling.py --build %s --sizes %s` "
              "(%.0f s)." % (args.build, ",".join(sizes), seconds), "",
              H.markdown_table(rows, COLUMNS, HEADERS), ""]
