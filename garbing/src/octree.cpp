@@ -801,12 +801,17 @@ class OctreeBuilder {
       }
       return true;
     };
+    thread_local std::vector<std::size_t> listed;  // the child's entries still listed
     for (int k = 0; k < 8; ++k) {
       std::vector<int>& witnesses = witnesses_of[k];
       if (count[k] < 2) continue;
       const std::uint8_t bit = static_cast<std::uint8_t>(1u << k);
       const Vec3 clo(lo[0][k & 1], lo[1][(k >> 1) & 1], lo[2][(k >> 2) & 1]);
-      // The sample points: the centre first, then the corners.
+      listed.clear();
+      for (std::size_t x = 0; x < n; ++x)
+        if (masks[x] & bit) listed.push_back(x);
+      // The sample points: the centre first (round 0), then the corners (round 1), each one's
+      // witness the ball of least power there, ties to the first listed (lowest id).
       std::array<Vec3, 9> samples;
       samples[0] = clo + Vec3::Constant(side / 2);
       for (int c = 0; c < 8; ++c)
@@ -816,35 +821,41 @@ class OctreeBuilder {
         // corners' (a dropped ball is never the least power at a point of the cube).
         const std::size_t tested = witnesses.size();
         const int first = round == 0 ? 0 : 1, last = round == 0 ? 1 : 9;
-        for (int s = first; s < last; ++s) {
-          int best = -1;
-          double best_power = 0;
-          for (std::size_t x = 0; x < n; ++x) {
-            if (!(masks[x] & bit)) continue;
-            const int i = parent.spheres[x];
-            const double pw = power(i, samples[s]);
-            if (best < 0 || pw < best_power) {  // ties: the first (lowest id)
-              best = i;
-              best_power = pw;
+        std::array<int, 9> best;
+        std::array<double, 9> best_power;
+        best.fill(-1);
+        for (std::size_t x : listed) {  // one pass for the round's samples
+          const int i = parent.spheres[x];
+          for (int sample = first; sample < last; ++sample) {
+            const double pw = power(i, samples[sample]);
+            if (best[sample] < 0 || pw < best_power[sample]) {
+              best[sample] = i;
+              best_power[sample] = pw;
             }
           }
-          if (std::find(witnesses.begin(), witnesses.end(), best) == witnesses.end())
-            witnesses.push_back(best);
         }
+        for (int sample = first; sample < last; ++sample)
+          if (std::find(witnesses.begin(), witnesses.end(), best[sample]) == witnesses.end())
+            witnesses.push_back(best[sample]);
         if (witnesses.size() == tested) continue;
-        for (std::size_t x = 0; x < n; ++x) {
-          if (!(masks[x] & bit)) continue;
+        auto kept_entry = listed.begin();
+        for (std::size_t x : listed) {
           const int i = parent.spheres[x];
-          if (std::find(witnesses.begin(), witnesses.end(), i) != witnesses.end()) continue;
-          std::size_t by = tested;
-          while (by < witnesses.size() && !dominates(witnesses[by], i, clo)) ++by;
-          if (by == witnesses.size()) continue;
-          if (cones && !cones_covered(i, gap, bit, witnesses[by], clo)) continue;
-          masks[x] = static_cast<std::uint8_t>(masks[x] & ~bit);
-          if (cones) kept[i] = masks[x];
-          --count[k];
-          dropped = true;
+          if (std::find(witnesses.begin(), witnesses.end(), i) == witnesses.end()) {
+            std::size_t by = tested;
+            while (by < witnesses.size() && !dominates(witnesses[by], i, clo)) ++by;
+            if (by < witnesses.size() &&
+                (!cones || cones_covered(i, gap, bit, witnesses[by], clo))) {
+              masks[x] = static_cast<std::uint8_t>(masks[x] & ~bit);
+              if (cones) kept[i] = masks[x];
+              --count[k];
+              dropped = true;
+              continue;
+            }
+          }
+          *kept_entry++ = x;
         }
+        listed.erase(kept_entry, listed.end());
       }
     }
     if (cones)
