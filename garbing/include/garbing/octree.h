@@ -29,7 +29,7 @@ struct OctreeOptions {
   /// Leave out of a cell's sphere list the balls that another listed ball covers inside the
   /// cube, with their cones (power dominance, docs/algorithm.md "Pruned lists"): the union of
   /// the listed primitives within the cube stays G's, and dense atoms list a fraction of the
-  /// balls (bumpy torus at a million atoms: 436 of 4,469 per active leaf). Criteria 1 and 3
+  /// balls (bumpy torus at a million atoms: 413 of 4,469 per active leaf). Criteria 1 and 3
   /// read the shorter lists (they can only split more), and so does the migration's P(c).
   /// false: the paper's lists, every ball meeting the cube. An envelope's lists are never
   /// pruned.
