@@ -630,8 +630,8 @@ class OctreeBuilder {
     for (int k : parent.cones) consider(k);
     // A cone's fill lies within reach_ of each of its balls: only a ball reaching a child it
     // does not meet (outside one ball) can have a cone to list there.
-    const PrimitiveId* const cone_base = g_.cones_of_atom(0).first;
-    for (std::size_t x = 0; x < parent.spheres.size(); ++x) {
+    const PrimitiveId* const cone_base = has_cones ? g_.cones_of_atom(0).first : nullptr;
+    for (std::size_t x = 0; has_cones && x < parent.spheres.size(); ++x) {
       if ((reach[x] & ~meets[x] & ~skip & 0xFF) == 0) continue;
       const int i = parent.spheres[x];
       const Vec3& p = g_.sphere(i).centre;
@@ -731,6 +731,7 @@ class OctreeBuilder {
     for (int i = 1; i < count; ++i)  // insertion sort of at most five
       for (int j = i; j > 0 && cuts[j] < cuts[j - 1]; --j) std::swap(cuts[j], cuts[j - 1]);
     const double curvature = delta.squaredNorm() - k.dr * k.dr;  // > 0: neither ball holds
+    if (!(curvature > 0)) return false;  // nearly nested balls, rounded: no claim
     for (int piece = 0; piece + 1 < count; ++piece) {
       const double t0 = cuts[piece], t1 = cuts[piece + 1];
       const Vec3 mid = k.centre((t0 + t1) / 2);
@@ -775,6 +776,16 @@ class OctreeBuilder {
       if (kept.size() != g_.sphere_count()) kept.assign(g_.sphere_count(), 0);
       for (std::size_t x = 0; x < n; ++x) kept[parent.spheres[x]] = masks[x];
     }
+    // kept must be all zeros between calls, even when an exception leaves this one.
+    struct Clear {
+      std::vector<std::uint8_t>& kept;
+      const std::vector<int>& atoms;
+      bool active;
+      ~Clear() {
+        if (active)
+          for (int i : atoms) kept[i] = 0;
+      }
+    } clear{kept, parent.spheres, cones};
     const PrimitiveId* const cone_base = cones ? g_.cones_of_atom(0).first : nullptr;
     // Whether every cone of atom i keeps its other ball j in the child (bit), or lies within
     // the cube in the ball of the witness w that covers i (gap_i: pow_i - pow_w >= gap_i on
@@ -858,8 +869,6 @@ class OctreeBuilder {
         listed.erase(kept_entry, listed.end());
       }
     }
-    if (cones)
-      for (std::size_t x = 0; x < n; ++x) kept[parent.spheres[x]] = 0;
     return dropped;
   }
 

@@ -46,12 +46,14 @@ class GarbCli(U.CliTestCase):
         # A dense double row of overlapping balls: most cells meet many that others cover.
         ma = self.write("row.ma", "".join("%r %r 0 0.4\n" % (0.02 * k, 0.05 * (k % 2)) for k in range(120)))
         per = {}
-        for name, extra in (("pruned", ()), ("full", ("--full-lists",))):
+        for name, extra in (("pruned", ()), ("full", ("--full-lists",)), ("pruned1", ("--threads", "1"))):
             r = run(ma, "-o", self.path(name + ".off"), "--stats", self.path(name + ".json"), *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
             per[name] = json.load(open(self.path(name + ".json")))
             self.assertTrue(per[name]["m2"]["closed"])
             self.assertEqual(per[name]["m2"]["genus"], 0)
+        # The pruning's scratch is per thread: the same mesh at one and two threads.
+        self.assertEqual(open(self.path("pruned.off"), "rb").read(), open(self.path("pruned1.off"), "rb").read())
         self.assertTrue(per["pruned"]["pruned_lists"])
         self.assertFalse(per["full"]["pruned_lists"])
         self.assertLess(2 * per["pruned"]["listed_per_active_leaf"]["balls_mean"],
@@ -61,6 +63,17 @@ class GarbCli(U.CliTestCase):
         r = run(capsule, "-o", self.path("c.off"), "--stats", self.path("c.json"))
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertFalse(json.load(open(self.path("c.json")))["pruned_lists"])
+
+    def test_envelope_with_a_slab_and_no_cone(self):
+        # Each ball holds the next: every edge is dropped (its hull is a ball), the face's slab
+        # stays. G then has slabs and no cones, a case the octree's cone search must skip.
+        ma = self.write("nested.ma", "3 0 1\nv 0 0 0 1\nv 0.1 0 0 2\nv 0 0.2 0 3\nf 0 1 2\n")
+        r = run(ma, "-o", self.path("n.off"), "--stats", self.path("n.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        stats = json.load(open(self.path("n.json")))
+        self.assertEqual((stats["m2"]["cones"], stats["m2"]["slabs"]), (0, 1))
+        self.assertEqual((stats["m2"]["components"], stats["m2"]["genus"]), (1, 0))
+        self.assertTrue(stats["m2"]["closed"])
 
     def test_medial_mesh_garbs_its_envelope(self):
         # Two disjoint balls joined by an edge: one capsule; their balls alone: two spheres.

@@ -386,6 +386,42 @@ void expect_pruned_lists_hold_g(const mg::MedialSurface& s, const mg::garbing::C
   }
   for (int c : active_leaves(full)) all += full.cells[c].spheres.size();
   EXPECT_GT(points_in_g, 1000);
+  // Points of every cone's solid, crease fills included: just inside an interpolated ball,
+  // each checked against the leaf holding it.
+  const double lattice = t.side(t.depth);
+  std::uniform_real_distribution<double> normal(-1, 1);
+  long in_cones = 0;
+  for (std::size_t k = 0; k < g.cone_count(); ++k) {
+    const mg::garbing::Cone& cone = g.cone(n + static_cast<int>(k));
+    for (int sample = 0; sample < 40; ++sample) {
+      Eigen::Vector3d dir(normal(gen), normal(gen), normal(gen));
+      if (!(dir.norm() > 1e-3)) continue;
+      const double u = unit(gen);
+      const Eigen::Vector3d p = cone.centre(u) + (1 - 1e-9) * cone.radius(u) * dir.normalized();
+      std::array<std::int64_t, 3> ijk;
+      for (int a = 0; a < 3; ++a) ijk[a] = static_cast<std::int64_t>(std::floor(p[a] / lattice));
+      const int leaf = mg::garbing::find_cell(t, t.depth, ijk);
+      if (leaf < 0 || !t.cells[leaf].is_active()) {
+        ADD_FAILURE() << "a point of cone " << k << " in no active leaf";
+        return;
+      }
+      const auto& cell = t.cells[leaf];
+      std::vector<int> prims(cell.spheres.begin(), cell.spheres.end());
+      for (int i : cell.spheres) {
+        const auto [first, last] = g.cones_of_atom(i);
+        prims.insert(prims.end(), first, last);
+      }
+      for (int c : cell.cones) prims.push_back(n + c);
+      ++in_cones;
+      const bool listed = std::any_of(prims.begin(), prims.end(), [&](int q) {
+        return g.primitive_contains(q, p, -1e-9 * lattice);
+      });
+      EXPECT_TRUE(listed) << "leaf " << leaf << ": a point of cone " << k
+                          << " in no listed primitive";
+      if (!listed) return;
+    }
+  }
+  EXPECT_GT(in_cones, 1000);
   EXPECT_LT(double(kept), most_kept * double(all)) << kept << " of " << all;
 }
 

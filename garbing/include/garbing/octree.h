@@ -60,8 +60,10 @@ struct OctreeCell {
   /// Cones(c): the cones of G (index k: primitive id sphere_count + k) whose solid meets the
   /// closed cube where neither ball does (through the fill of the crease between the balls),
   /// sorted. A cone one of whose balls meets the cube is not listed: its ball stands for it in
-  /// the criteria. Empty in a cell inside one ball and its descendants (they hold no boundary,
-  /// and the criteria skip them).
+  /// the criteria. Pruned lists: a cone is not listed where a listed ball holds it within the
+  /// cube, and can be listed where a ball of it meets the cube but was dropped higher up
+  /// (neither ball is then listed). Empty in a cell inside one ball and its descendants (they
+  /// hold no boundary, and the criteria skip them).
   std::vector<int> cones;
   /// Slabs(c): the slabs of G (index k: primitive id g.slab_id(k)) whose prism (slab.h: the
   /// slab's solid less its balls and edge hulls, which G holds as balls and cones) meets the
