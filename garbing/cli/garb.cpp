@@ -191,8 +191,8 @@ int garb_main(int argc, char** argv) {
   app.add_option("--m1", m1_path, "also write the coarse mesh M1 here");
   bool full_lists = false;
   app.add_flag("--full-lists", full_lists,
-               "the paper's cell lists: every ball meeting a cell (default: balls another ball "
-               "covers in the cell are left out; slower on dense atoms)");
+               "the paper's cell lists: every ball meeting a cell (default: leave out the balls "
+               "another ball covers in the cell; full lists are slower and larger on dense atoms)");
   app.add_option("--min-depth", opt.octree.min_depth,
                  "minimal active depth d (0 = automatic: side <= rc/8)")
       ->check(mg::NonNegative);
