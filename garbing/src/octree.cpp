@@ -762,9 +762,8 @@ class OctreeBuilder {
     auto power = [&](int i, const Vec3& q) {
       return (q - g_.sphere(i).centre).squaredNorm() - g_.sphere(i).radius * g_.sphere(i).radius;
     };
-    // max over the cube [clo, clo + side] of pow_w - pow_i, affine in x:
-    // 2 x.(c_i - c_w) + |c_w|^2 - r_w^2 - |c_i|^2 + r_i^2.
-    double gap = 0;  // of the last ball dominated, against its witness
+    // w covers i in the cube when pow_i - pow_w exceeds the margin on all of it (power_gap).
+    double gap = 0;  // of the last ball tested, against its witness
     auto dominates = [&](int w, int i, const Vec3& clo) {
       gap = power_gap(i, w, clo, side);
       return gap > margin_;
