@@ -482,12 +482,18 @@ class OctreeBuilder {
       ++tree_.splits[marks[i].second - 1];
       to_split.push_back(c);
     }
-    // Children's sphere lists, filtered from the parent's, in parallel.
+    // Children's sphere lists, filtered from the parent's, in parallel. Only leaves' lists are
+    // read from now on: each parent's go as soon as its children hold theirs.
     std::vector<std::array<OctreeCell, 8>> children(to_split.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, to_split.size(), 16),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i)
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
                           make_children(to_split[i], children[i]);
+                          OctreeCell& parent = tree_.cells[to_split[i]];
+                          release(parent.spheres);
+                          release(parent.cones);
+                          release(parent.slabs);
+                        }
                       });
     std::vector<int> created;
     created.reserve(8 * to_split.size());
@@ -496,10 +502,6 @@ class OctreeBuilder {
       OctreeCell& parent = tree_.cells[to_split[i]];
       const int first = static_cast<int>(tree_.cells.size());
       parent.first_child = first;
-      // Only leaves' lists are read from now on: the children hold theirs.
-      release(parent.spheres);
-      release(parent.cones);
-      release(parent.slabs);
       for (auto& child : children[i]) {
         created.push_back(static_cast<int>(tree_.cells.size()));
         tree_.cells.push_back(std::move(child));
@@ -793,8 +795,11 @@ class OctreeBuilder {
     // gap_i + t gap_j - kappa t (1 - t): when its least value over t in [0, 1] exceeds the
     // margin, w holds the cone in the cube. Else the exact test (hull_dominated).
     auto cones_covered = [&](int i, double gap_i, std::uint8_t bit, int w, const Vec3& clo) {
-      const auto [first, last] = g_.cones_of_atom(i);
       const double r = g_.sphere(i).radius;
+      // All at once from i's largest reach (reach_[i] bounds each cone_reach_): the same
+      // decision as the first test below on every cone, without reading the cones' entries.
+      if (gap_i - reach_[i] * (2 * r + reach_[i]) > margin_) return true;
+      const auto [first, last] = g_.cones_of_atom(i);
       for (const PrimitiveId* id = first; id != last; ++id) {
         const std::size_t p = static_cast<std::size_t>(id - cone_base);
         // First from i alone: the fill lies in B(c_i, r + reach), whose power is pow_i -
