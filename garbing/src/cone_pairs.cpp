@@ -7,10 +7,16 @@
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Regular_triangulation_cell_base_3.h>
 #include <CGAL/Regular_triangulation_vertex_base_3.h>
+#include <CGAL/Spatial_lock_grid_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <tuple>
 
 namespace mg::garbing {
 namespace {
@@ -22,17 +28,42 @@ using Vb =
 // Hidden points are not kept: only the edges are read, and keeping them costs a list per cell.
 using Cb = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>,
                                                    CGAL::Discard_hidden_points>;
-using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
-using Regular = CGAL::Regular_triangulation_3<K, Tds>;
+// Built in parallel (TBB, CGAL's lock grid): CGAL perturbs ties symbolically, so the regular
+// triangulation of a set of distinct weighted points is one, whatever the insertion order.
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Parallel_tag>;
+using Regular =
+    CGAL::Regular_triangulation_3<K, Tds, CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>>;
 
 /// Edges of the regular triangulation of the atoms (weights r^2), as sorted atom pairs.
-/// Hidden atoms (whose power cell is empty) have no vertex and no edge.
+/// Hidden atoms (whose power cell is empty) have no vertex and no edge; of atoms whose
+/// weighted points are equal (centre and r^2), only the first (lowest index) is inserted, so which
+/// of them carries the vertex does not depend on the threads' order.
 std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
+  const std::size_t count = atoms.atoms.size();
+  std::vector<int> order(count);
+  for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<int>(i);
+  auto ball = [&](int i) {
+    const MedialAtom& a = atoms.atoms[static_cast<std::size_t>(i)];
+    return std::make_tuple(a.centre.x(), a.centre.y(), a.centre.z(), a.radius * a.radius);
+  };
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return std::make_pair(ball(a), a) < std::make_pair(ball(b), b); });
   std::vector<std::pair<Regular::Weighted_point, int>> points;
-  points.reserve(atoms.atoms.size());
-  for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
-    points.emplace_back(mg::detail::to_weighted_point<K>(atoms.atoms[i]), static_cast<int>(i));
-  Regular rt(points.begin(), points.end());
+  points.reserve(count);
+  CGAL::Bbox_3 box;
+  for (std::size_t x = 0; x < count; ++x) {
+    const int i = order[x];
+    if (x > 0 && ball(i) == ball(order[x - 1])) continue;  // the one before has a lower index
+    const MedialAtom& a = atoms.atoms[static_cast<std::size_t>(i)];
+    points.emplace_back(mg::detail::to_weighted_point<K>(a), i);
+    box += CGAL::Bbox_3(a.centre.x(), a.centre.y(), a.centre.z(), a.centre.x(), a.centre.y(),
+                        a.centre.z());
+  }
+  // Points in input order (CGAL sorts them spatially itself).
+  std::sort(points.begin(), points.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  Regular::Lock_data_structure locks(box, 50);
+  Regular rt(points.begin(), points.end(), &locks);
   // The six edges of every finite cell, bucketed by their lower atom and each kept once.
   // (CGAL's edge iterator turns around every edge to visit it once, and
   // number_of_finite_edges() runs it too: most of this function's time when it was used.) A
@@ -61,12 +92,25 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
   for (std::size_t a = 2; a < start.size(); ++a) start[a] += start[a - 1];
   upper.resize(static_cast<std::size_t>(start.back()));
   each_edge([&](int a, int b) { upper[start[a + 1]++] = b; });  // start[a + 1]: a's fill point
-  for (std::size_t a = 0; a < n; ++a) {
-    const auto first = upper.begin() + start[a], last = upper.begin() + start[a + 1];
-    std::sort(first, last);
-    for (auto b = first; b != last; ++b)
-      if (b == first || *b != *(b - 1)) edges.push_back({static_cast<int>(a), *b});
-  }
+  // Per atom, in parallel: its upper neighbours sorted and counted once each, then written.
+  std::vector<int> distinct(n + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t a = r.begin(); a != r.end(); ++a) {
+                        const auto first = upper.begin() + start[a];
+                        const auto last = upper.begin() + start[a + 1];
+                        std::sort(first, last);
+                        distinct[a + 1] = static_cast<int>(std::unique(first, last) - first);
+                      }
+                    });
+  for (std::size_t a = 0; a < n; ++a) distinct[a + 1] += distinct[a];
+  edges.resize(static_cast<std::size_t>(distinct[n]));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t a = r.begin(); a != r.end(); ++a)
+                        for (int k = distinct[a]; k < distinct[a + 1]; ++k)
+                          edges[k] = {static_cast<int>(a), upper[start[a] + k - distinct[a]]};
+                    });
   return edges;
 }
 
@@ -118,30 +162,39 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
       }
       break;
   }
-  std::sort(candidates.begin(), candidates.end());
+  if (!std::is_sorted(candidates.begin(), candidates.end()))  // the triangulation's already are
+    std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   // The collar limit in model units: max_collar times rc / 8, the automatic octree's leaf
   // side bound (from the atoms alone).
   const double collar_limit =
       opt.max_collar > 0 ? opt.max_collar * characteristic_radius(atoms) / 8 : INFINITY;
-  std::vector<std::array<int, 2>> pairs;
-  for (const auto& [i, j] : candidates) {
+  auto kept = [&](int i, int j) {
     const MedialAtom& a = atoms.atoms[i];
     const MedialAtom& b = atoms.atoms[j];
     const double L = (b.centre - a.centre).norm();
-    if (!(L < a.radius + b.radius) || !(L > std::abs(a.radius - b.radius))) continue;
+    if (!(L < a.radius + b.radius) || !(L > std::abs(a.radius - b.radius))) return false;
     // Radius of the intersection circle against the smaller radius.
     const Crease c = crease(L, a.radius, b.radius);
     const double x = c.along, h = c.radius;
-    if (h < opt.min_circle_ratio * std::min(a.radius, b.radius)) continue;
+    if (h < opt.min_circle_ratio * std::min(a.radius, b.radius)) return false;
     // Collar: how far the lateral surface stands off the crease where the two spheres meet
     // (in the axial section the lateral line is x sin(phi) + y cos(phi) = r1, the crease is
     // the point (x, h)).
     const double sin_phi = (a.radius - b.radius) / L;
     const double cos_phi = std::sqrt(std::max(0.0, 1 - sin_phi * sin_phi));
-    if (a.radius - (x * sin_phi + h * cos_phi) > collar_limit) continue;
-    pairs.push_back({i, j});
-  }
+    return !(a.radius - (x * sin_phi + h * cos_phi) > collar_limit);
+  };
+  // Each candidate on its own, in parallel; kept in the candidates' order.
+  std::vector<std::uint8_t> keep(candidates.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, candidates.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t k = r.begin(); k != r.end(); ++k)
+                        keep[k] = kept(candidates[k][0], candidates[k][1]);
+                    });
+  std::vector<std::array<int, 2>> pairs;
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+    if (keep[k]) pairs.push_back(candidates[k]);
   return pairs;
 }
 
