@@ -63,9 +63,38 @@ struct TargetShape::Bvh {
     nodes.reserve(2 * order.size() / 4 + 2);
     if (!order.empty()) build(nodes, 0, static_cast<int>(order.size()), 0);
     // From now on boxes[i] is the box of primitive order[i]: a leaf's boxes are contiguous.
-    std::vector<Box> in_order(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) in_order[i] = boxes[order[i]];
-    boxes = std::move(in_order);
+    // Permuted in place (a second array of boxes would be the build's peak): position i takes
+    // the box at order[i], and a box is read before its own position is written. `order` is
+    // injective but may leave ids out (slabs without a prism): their positions start chains,
+    // walked first; what is left is cycles, each started from a saved box.
+    const std::size_t m = order.size();
+    std::vector<bool> is_source(boxes.size(), false), placed(m, false);
+    for (int id : order) is_source[static_cast<std::size_t>(id)] = true;
+    for (std::size_t head = 0; head < m; ++head) {
+      if (is_source[head]) continue;
+      for (std::size_t i = head;;) {
+        const std::size_t from = static_cast<std::size_t>(order[i]);
+        boxes[i] = boxes[from];
+        placed[i] = true;
+        if (from >= m) break;
+        i = from;
+      }
+    }
+    for (std::size_t start = 0; start < m; ++start) {
+      if (placed[start]) continue;
+      const Box saved = boxes[start];
+      for (std::size_t i = start;;) {
+        placed[i] = true;
+        const std::size_t from = static_cast<std::size_t>(order[i]);
+        if (from == start) {
+          boxes[i] = saved;
+          break;
+        }
+        boxes[i] = boxes[from];
+        i = from;
+      }
+    }
+    boxes.resize(m);
   }
 
   static double half_area(const Box& b) {
@@ -81,17 +110,25 @@ struct TargetShape::Bvh {
     constexpr int kBins = 16;
     double best_cost = kInf;
     int best_axis = -1, best_bin = -1;
+    // The three axes' bins in one pass over the boxes.
+    std::array<std::array<Box, kBins>, 3> bins_box;
+    std::array<std::array<int, kBins>, 3> bins_count{};
+    std::array<bool, 3> spread;
+    for (int axis = 0; axis < 3; ++axis) spread[axis] = centres.hi[axis] - centres.lo[axis] > 0;
+    for (int i = first; heuristic && i < last; ++i) {
+      const Box& b = boxes[order[i]];
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!spread[axis]) continue;
+        const int k = bin_of(b, axis, centres.lo[axis], centres.hi[axis] - centres.lo[axis], kBins);
+        bins_box[axis][k].grow(b);
+        ++bins_count[axis][k];
+      }
+    }
     for (int axis = 0; heuristic && axis < 3; ++axis) {
       const double lo = centres.lo[axis], extent = centres.hi[axis] - lo;
       if (!(extent > 0)) continue;
-      std::array<Box, kBins> bin_box;
-      std::array<int, kBins> bin_count{};
-      for (int i = first; i < last; ++i) {
-        const Box& b = boxes[order[i]];
-        const int k = bin_of(b, axis, lo, extent, kBins);
-        bin_box[k].grow(b);
-        ++bin_count[k];
-      }
+      const std::array<Box, kBins>& bin_box = bins_box[axis];
+      const std::array<int, kBins>& bin_count = bins_count[axis];
       std::array<double, kBins> right_cost{};
       Box acc;
       int n = 0;
@@ -168,16 +205,16 @@ struct TargetShape::Bvh {
       out[id].right = right;
       return id;
     }
-    std::vector<Node> left, right;
-    tbb::parallel_invoke([&] { build(left, first, mid, depth + 1); },
+    // The left half goes straight after this node in `out`; the right one, built meanwhile in
+    // its own array, is appended after it.
+    std::vector<Node> right;
+    tbb::parallel_invoke([&] { build(out, first, mid, depth + 1); },
                          [&] { build(right, mid, last, depth + 1); });
-    for (auto* half : {&left, &right}) {
-      const int offset = static_cast<int>(out.size());
-      if (half == &right) out[id].right = offset;
-      for (Node n : *half) {
-        if (n.right >= 0) n.right += offset;
-        out.push_back(n);
-      }
+    const int offset = static_cast<int>(out.size());
+    out[id].right = offset;
+    for (Node n : right) {
+      if (n.right >= 0) n.right += offset;
+      out.push_back(n);
     }
     return id;
   }

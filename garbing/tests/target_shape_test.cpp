@@ -2,6 +2,7 @@
 #include "core/errors.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -112,6 +113,64 @@ TEST(TargetShape, RaysThroughTheConeSolid) {
   EXPECT_FALSE(cone_only.first_entry(Vector3d(0, 5, 0), Vector3d(1, 0, 0), 100, t));
 }
 
+TEST(TargetShape, BoxQueriesFindEveryPrimitiveAmongSlabsWithoutPrisms) {
+  // Envelope slabs, every other one too steep for a prism: those have no box in the hierarchy,
+  // the others' boxes are reordered around the gaps. Each ball is found at its centre, each
+  // prism at its centres' centroid; a slab without prism never; balls exactly on random boxes.
+  mg::MedialSurface s;
+  std::vector<std::array<int, 3>> triples;
+  for (int k = 0; k < 60; ++k) {
+    const int first = static_cast<int>(s.atoms.size());
+    const Vector3d o(3.0 * (k % 8), 3.0 * (k / 8), 0.5 * (k % 3));
+    const bool steep = k % 2 == 1;
+    s.atoms.push_back({o, steep ? 3.0 : 0.3});
+    s.atoms.push_back({o + Vector3d(1, 0, 0), steep ? 0.1 : 0.35});
+    s.atoms.push_back({o + Vector3d(0, 1, 0.2), steep ? 0.1 : 0.25});
+    triples.push_back({first, first + 1, first + 2});
+  }
+  const gb::TargetShape g(s, {}, triples, gb::Frame{});
+  ASSERT_EQ(g.slab_count(), 60u);
+  std::vector<gb::PrimitiveId> found;
+  auto query = [&](const Vector3d& lo, const Vector3d& hi) {
+    found.clear();
+    g.primitives_meeting_box(lo, hi, found);
+    return found;
+  };
+  const Vector3d eps = Vector3d::Constant(1e-6);
+  for (std::size_t i = 0; i < g.sphere_count(); ++i) {
+    const auto hit = query(s.atoms[i].centre - eps, s.atoms[i].centre + eps);
+    EXPECT_NE(std::find(hit.begin(), hit.end(), static_cast<int>(i)), hit.end()) << i;
+  }
+  for (int k = 0; k < 60; ++k) {
+    const gb::PrimitiveId id = g.slab_id(k);
+    EXPECT_EQ(g.slab(id).has_tangent_triangles, k % 2 == 0);
+    const auto hit = query(Vector3d::Constant(-100), Vector3d::Constant(100));
+    EXPECT_EQ(std::find(hit.begin(), hit.end(), id) != hit.end(), k % 2 == 0) << k;
+    if (k % 2 == 1) continue;
+    const Vector3d centroid = (s.atoms[triples[k][0]].centre + s.atoms[triples[k][1]].centre +
+                               s.atoms[triples[k][2]].centre) /
+                              3;
+    const auto near = query(centroid - eps, centroid + eps);
+    EXPECT_NE(std::find(near.begin(), near.end(), id), near.end()) << k;
+  }
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> x(-3, 24), y(-3, 24), z(-3, 4), side(0.05, 2);
+  for (int q = 0; q < 300; ++q) {
+    const Vector3d lo(x(gen), y(gen), z(gen));
+    const Vector3d hi = lo + Vector3d(side(gen), side(gen), side(gen));
+    std::vector<gb::PrimitiveId> balls;
+    for (gb::PrimitiveId id : query(lo, hi))
+      if (g.is_sphere(id)) balls.push_back(id);
+    std::vector<gb::PrimitiveId> expected;
+    for (std::size_t i = 0; i < s.atoms.size(); ++i) {
+      const Vector3d c = s.atoms[i].centre;
+      if ((c.cwiseMax(lo).cwiseMin(hi) - c).squaredNorm() <= s.atoms[i].radius * s.atoms[i].radius)
+        expected.push_back(static_cast<int>(i));
+    }
+    EXPECT_EQ(balls, expected) << q;
+  }
+}
+
 TEST(TargetShape, ContainsAndClosestPoint) {
   const gb::TargetShape shape(atoms({kA, kB}), {{0, 1}});
   EXPECT_TRUE(shape.contains(Vector3d(1, 0.7, 0)));  // in the cone, outside both balls
@@ -189,6 +248,40 @@ TEST(ConePairs, RegularTriangulationEdgesOfATallBipyramid) {
   flat.atoms[3].centre.z() = 0.3;
   flat.atoms[4].centre.z() = -0.3;
   EXPECT_EQ(gb::cone_pairs(flat, opt).size(), 10u);
+}
+
+TEST(ConePairs, RegularTriangulationAtAnyThreadCountAndWithRepeatedAtoms) {
+  // A lattice of equal balls (every cell of it cospherical: the triangulation rests on CGAL's
+  // symbolic perturbation) and jittered balls of random radii, then copies of some of them
+  // appended: the same pairs at one thread and at several (the triangulation is built in
+  // parallel), and the copies (higher indices) carry no pair.
+  mg::MedialSurface s;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 10; ++k) s.atoms.push_back({Vector3d(i, j, k), 0.8});
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(0, 9), radius(0.4, 1.2);
+  for (int k = 0; k < 2000; ++k) s.atoms.push_back({Vector3d(u(gen), u(gen), u(gen)), radius(gen)});
+  const std::size_t distinct = s.atoms.size();
+  for (std::size_t k = 0; k < distinct; k += 7) s.atoms.push_back(s.atoms[k]);
+  gb::ConeOptions opt;
+  opt.min_circle_ratio = 0;
+  opt.max_collar = 0;
+  std::vector<std::array<int, 2>> one, several;
+  {
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+    one = gb::cone_pairs(s, opt);
+  }
+  {
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 4);
+    several = gb::cone_pairs(s, opt);
+  }
+  ASSERT_GT(one.size(), distinct);
+  EXPECT_EQ(one, several);
+  for (const auto& p : one) EXPECT_LT(p[1], static_cast<int>(distinct));
+  mg::MedialSurface without = s;
+  without.atoms.resize(distinct);
+  EXPECT_EQ(gb::cone_pairs(without, opt), one);
 }
 
 TEST(ConePairs, CollarLimitMatchesTheConeGeometry) {
