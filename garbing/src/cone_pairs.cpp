@@ -48,20 +48,21 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
   };
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return std::make_pair(ball(a), a) < std::make_pair(ball(b), b); });
+  // The first of each run of equal balls (the lowest index) is kept; the points go to CGAL in
+  // input order (it sorts them spatially itself).
+  std::vector<std::uint8_t> first_of_its_ball(count, 0);
+  for (std::size_t x = 0; x < count; ++x)
+    first_of_its_ball[order[x]] = x == 0 || ball(order[x]) != ball(order[x - 1]);
   std::vector<std::pair<Regular::Weighted_point, int>> points;
   points.reserve(count);
   CGAL::Bbox_3 box;
-  for (std::size_t x = 0; x < count; ++x) {
-    const int i = order[x];
-    if (x > 0 && ball(i) == ball(order[x - 1])) continue;  // the one before has a lower index
-    const MedialAtom& a = atoms.atoms[static_cast<std::size_t>(i)];
-    points.emplace_back(mg::detail::to_weighted_point<K>(a), i);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!first_of_its_ball[i]) continue;
+    const MedialAtom& a = atoms.atoms[i];
+    points.emplace_back(mg::detail::to_weighted_point<K>(a), static_cast<int>(i));
     box += CGAL::Bbox_3(a.centre.x(), a.centre.y(), a.centre.z(), a.centre.x(), a.centre.y(),
                         a.centre.z());
   }
-  // Points in input order (CGAL sorts them spatially itself).
-  std::sort(points.begin(), points.end(),
-            [](const auto& a, const auto& b) { return a.second < b.second; });
   Regular::Lock_data_structure locks(box, 50);
   Regular rt(points.begin(), points.end(), &locks);
   // The six edges of every finite cell, bucketed by their lower atom and each kept once.
