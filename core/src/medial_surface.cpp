@@ -7,9 +7,12 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 namespace mg {
 namespace {
@@ -220,6 +223,63 @@ double characteristic_radius(const MedialSurface& s) {
     rmax = std::max(rmax, a.radius);
   }
   return (rmin + rmax) / 2;
+}
+
+namespace {
+
+/// The 21 low bits of v spread to every third bit.
+std::uint64_t spread_bits(std::uint64_t v) {
+  v &= 0x1FFFFF;
+  v = (v | v << 32) & 0x1F00000000FFFFULL;
+  v = (v | v << 16) & 0x1F0000FF0000FFULL;
+  v = (v | v << 8) & 0x100F00F00F00F00FULL;
+  v = (v | v << 4) & 0x10C30C30C30C30C3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+}  // namespace
+
+MedialSurface spatially_sorted(const MedialSurface& s, std::vector<int>* old_index) {
+  const std::size_t n = s.atoms.size();
+  Eigen::AlignedBox3d box;
+  for (const MedialAtom& a : s.atoms) box.extend(a.centre);
+  const double extent = n > 0 ? box.sizes().maxCoeff() : 0;
+  const double steps = 2097152;  // 2^21
+  std::vector<std::pair<std::uint64_t, int>> keys(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t key = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double x = extent > 0 ? (s.atoms[i].centre[axis] - box.min()[axis]) / extent : 0;
+      const auto q = static_cast<std::uint64_t>(std::clamp(x * steps, 0.0, steps - 1));
+      key |= spread_bits(q) << axis;
+    }
+    keys[i] = {key, static_cast<int>(i)};
+  }
+  std::sort(keys.begin(), keys.end(), [&](const auto& x, const auto& y) {
+    if (x.first != y.first) return x.first < y.first;
+    const MedialAtom& a = s.atoms[static_cast<std::size_t>(x.second)];
+    const MedialAtom& b = s.atoms[static_cast<std::size_t>(y.second)];
+    return std::make_tuple(a.centre.x(), a.centre.y(), a.centre.z(), a.radius, x.second) <
+           std::make_tuple(b.centre.x(), b.centre.y(), b.centre.z(), b.radius, y.second);
+  });
+  MedialSurface out;
+  out.atoms.reserve(n);
+  std::vector<int> new_index(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    out.atoms.push_back(s.atoms[static_cast<std::size_t>(keys[k].second)]);
+    new_index[static_cast<std::size_t>(keys[k].second)] = static_cast<int>(k);
+  }
+  out.edges.reserve(s.edges.size());
+  for (const auto& e : s.edges) out.edges.push_back({new_index[e[0]], new_index[e[1]]});
+  out.faces.reserve(s.faces.size());
+  for (const auto& f : s.faces)
+    out.faces.push_back({new_index[f[0]], new_index[f[1]], new_index[f[2]]});
+  if (old_index) {
+    old_index->resize(n);
+    for (std::size_t k = 0; k < n; ++k) (*old_index)[k] = keys[k].second;
+  }
+  return out;
 }
 
 void validate(const MedialSurface& s) {

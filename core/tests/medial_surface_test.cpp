@@ -276,6 +276,43 @@ TEST(MedialSurface, RoundTripWithZeroRadiiAndDroppedFlagsIsExact) {
   EXPECT_EQ(twice.str(), once.str());
 }
 
+TEST(MedialSurface, SpatiallySortedIsZOrderWithConnectivityRenumbered) {
+  // The eight corners of a cube, listed backwards, and a copy of corner (1, 1, 0) with another
+  // radius: Z-order puts x in the lowest bit, then y, then z; equal centres go by radius.
+  mg::MedialSurface s;
+  for (int k = 7; k >= 0; --k)
+    s.atoms.push_back({Eigen::Vector3d(k & 1, (k >> 1) & 1, (k >> 2) & 1), 0.1 + 0.01 * k});
+  s.atoms.push_back({Eigen::Vector3d(1, 1, 0), 0.05});
+  s.edges = {{0, 8}, {7, 1}};
+  s.faces = {{8, 0, 3}};
+  std::vector<int> old_index;
+  const mg::MedialSurface t = mg::spatially_sorted(s, &old_index);
+  ASSERT_EQ(t.atoms.size(), 9u);
+  ASSERT_EQ(old_index.size(), 9u);
+  // Corner k of the cube was atom 7 - k; corner 3 comes after its smaller copy (atom 8).
+  const std::vector<int> expected = {7, 6, 5, 8, 4, 3, 2, 1, 0};
+  EXPECT_EQ(old_index, expected);
+  for (std::size_t k = 0; k < 9; ++k) {
+    EXPECT_EQ(t.atoms[k].centre, s.atoms[old_index[k]].centre);
+    EXPECT_EQ(t.atoms[k].radius, s.atoms[old_index[k]].radius);
+  }
+  // Edges and faces join the same balls as before, in the same order and direction.
+  ASSERT_EQ(t.edges.size(), 2u);
+  ASSERT_EQ(t.faces.size(), 1u);
+  for (std::size_t e = 0; e < 2; ++e)
+    for (int end = 0; end < 2; ++end) EXPECT_EQ(old_index[t.edges[e][end]], s.edges[e][end]);
+  for (int corner = 0; corner < 3; ++corner)
+    EXPECT_EQ(old_index[t.faces[0][corner]], s.faces[0][corner]);
+  // Any order of the same atoms sorts the same.
+  mg::MedialSurface u;
+  u.atoms.assign(s.atoms.rbegin(), s.atoms.rend());
+  const mg::MedialSurface v = mg::spatially_sorted(u);
+  for (std::size_t k = 0; k < 9; ++k) {
+    EXPECT_EQ(v.atoms[k].centre, t.atoms[k].centre);
+    EXPECT_EQ(v.atoms[k].radius, t.atoms[k].radius);
+  }
+}
+
 TEST(MedialSurface, FailedWriteLeavesNoFile) {
   mg::MedialSurface s;
   s.atoms = {{Eigen::Vector3d::Zero(), 1.0}};

