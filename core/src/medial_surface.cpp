@@ -250,8 +250,9 @@ MedialSurface spatially_sorted(const MedialSurface& s, std::vector<int>* old_ind
   for (std::size_t i = 0; i < n; ++i) {
     std::uint64_t key = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const double x = extent > 0 ? (s.atoms[i].centre[axis] - box.min()[axis]) / extent : 0;
-      const auto q = static_cast<std::uint64_t>(std::clamp(x * steps, 0.0, steps - 1));
+      // In [0, steps): NaN (an extent that overflows to infinity) goes to 0.
+      const double x = (s.atoms[i].centre[axis] - box.min()[axis]) / extent * steps;
+      const auto q = static_cast<std::uint64_t>(x > 0 ? std::min(x, steps - 1) : 0.0);
       key |= spread_bits(q) << axis;
     }
     keys[i] = {key, static_cast<int>(i)};
@@ -260,8 +261,13 @@ MedialSurface spatially_sorted(const MedialSurface& s, std::vector<int>* old_ind
     if (x.first != y.first) return x.first < y.first;
     const MedialAtom& a = s.atoms[static_cast<std::size_t>(x.second)];
     const MedialAtom& b = s.atoms[static_cast<std::size_t>(y.second)];
-    return std::make_tuple(a.centre.x(), a.centre.y(), a.centre.z(), a.radius, x.second) <
-           std::make_tuple(b.centre.x(), b.centre.y(), b.centre.z(), b.radius, y.second);
+    // Then the signs of zeros (-0.0 == 0.0), so that only identical atoms tie.
+    auto sign = [](const MedialAtom& m) {
+      return std::make_tuple(std::signbit(m.centre.x()), std::signbit(m.centre.y()),
+                             std::signbit(m.centre.z()), std::signbit(m.radius));
+    };
+    return std::make_tuple(a.centre.x(), a.centre.y(), a.centre.z(), a.radius, sign(a), x.second) <
+           std::make_tuple(b.centre.x(), b.centre.y(), b.centre.z(), b.radius, sign(b), y.second);
   });
   MedialSurface out;
   out.atoms.reserve(n);

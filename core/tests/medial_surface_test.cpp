@@ -303,6 +303,16 @@ TEST(MedialSurface, SpatiallySortedIsZOrderWithConnectivityRenumbered) {
     for (int end = 0; end < 2; ++end) EXPECT_EQ(old_index[t.edges[e][end]], s.edges[e][end]);
   for (int corner = 0; corner < 3; ++corner)
     EXPECT_EQ(old_index[t.faces[0][corner]], s.faces[0][corner]);
+  // Inside the box the axes' bits interleave: (0, 1, 0) comes before (2, 0, 0), which comes
+  // before (0, 0, 2); sorting by (z, y, x) or (x, y, z) would order them otherwise.
+  mg::MedialSurface w;
+  for (const auto& p :
+       {Eigen::Vector3d(3, 3, 3), Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(2, 0, 0),
+        Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 0)})
+    w.atoms.push_back({p, 0.5});
+  std::vector<int> w_order;
+  mg::spatially_sorted(w, &w_order);
+  EXPECT_EQ(w_order, (std::vector<int>{4, 3, 2, 1, 0}));
   // Any order of the same atoms sorts the same.
   mg::MedialSurface u;
   u.atoms.assign(s.atoms.rbegin(), s.atoms.rend());

@@ -133,8 +133,7 @@ std::vector<std::array<int, 2>> intersecting_pairs(const MedialSurface& atoms) {
 
 }  // namespace
 
-std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const ConeOptions& opt) {
-  validate(atoms);
+void require_positive_radii(const MedialSurface& atoms) {
   // A ball of radius 0 is a point: the union of balls has nothing to garb there. Only hulls
   // (a medial mesh's cones and slabs) give such atoms a volume.
   for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
@@ -142,6 +141,11 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
       throw InvalidInput("atom " + std::to_string(i) +
                          " has radius 0: G of the atoms alone (rt) needs radii > 0; the "
                          "envelope of a medial mesh (ma) takes them");
+}
+
+std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const ConeOptions& opt) {
+  validate(atoms);
+  require_positive_radii(atoms);
   if (!(opt.min_circle_ratio >= 0 && opt.min_circle_ratio <= 1))
     throw InvalidInput("cone filter: the minimal circle ratio must be in [0, 1]");
   if (!(opt.max_collar >= 0)) throw InvalidInput("cone filter: the maximal collar must be >= 0");

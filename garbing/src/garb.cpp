@@ -10,6 +10,9 @@ Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
   Stopwatch clock;
   // G: the union of the atoms' balls and of the chosen cones (or of the medial mesh's cones
   // and slabs), in the frame of the octree.
+  // Checked on the atoms as given, so that a message names the caller's index of an atom.
+  validate(atoms);
+  if (resolve(opt.primitives, atoms) == PrimitiveSet::atoms) require_positive_radii(atoms);
   // The atoms in Z-order first: a cell's balls, the octree's lists and the migration's sums
   // then read nearby memory (at a million atoms in an arbitrary order, 1.7x as fast), and the
   // same atoms in any order give the same mesh.

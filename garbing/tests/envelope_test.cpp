@@ -1,5 +1,6 @@
 // Medial meshes: G as the envelope of balls, cones and slabs, garbed end to end on analytic
 // envelopes whose topology is known.
+#include "core/errors.h"
 #include "core/mesh_topology.h"
 #include "core/shapes.h"
 #include "core/triangle_defects.h"
@@ -246,6 +247,21 @@ TEST(Envelope, SameMeshAtOneAndTwoThreads) {
   }
   EXPECT_EQ(one, two);
   EXPECT_GT(one.size(), 100u);
+}
+
+TEST(Garb, RefusesBadAtomsNamingTheCallersIndexBeforeSorting) {
+  // The atoms are checked as given: an edge out of range is refused (not renumbered), and a
+  // ball of radius 0 is named by its index in the caller's list, not in Z-order.
+  mg::MedialSurface s = mg_test::atoms({{Vector3d(5, 5, 5), 1}, {Vector3d(0, 0, 0), 1}});
+  s.edges = {{0, 7}};
+  EXPECT_THROW(gb::garb(s), mg::InvalidInput);
+  mg::MedialSurface t = mg_test::atoms({{Vector3d(5, 5, 5), 1}, {Vector3d(0, 0, 0), 0}});
+  try {
+    gb::garb(t);
+    ADD_FAILURE() << "a ball of radius 0 was garbed as a ball";
+  } catch (const mg::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("atom 1 has radius 0"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Envelope, SameMeshWithTheAtomsRenumbered) {

@@ -46,10 +46,10 @@ double characteristic_radius(const MedialSurface& s);
 
 /// S with its atoms in Z-order (Morton order) of their centres: the centres quantized to 2^21
 /// steps per axis over the largest side of their bounding box, ties broken by centre, radius,
-/// then index. Edges and faces are renumbered and kept in their order. Nearby atoms get nearby
-/// indices, so code reading the balls of a region reads contiguous memory; and the atoms of any
-/// permutation of S come out in the same order (identical atoms are interchangeable unless
-/// edges or faces tell them apart).
+/// the signs of zeros, then index. Edges and faces are renumbered and kept in their order. Nearby
+/// atoms get nearby indices, so code reading the balls of a region reads contiguous memory; and the
+/// atoms of any permutation of S come out in the same order (identical atoms are interchangeable
+/// unless edges or faces tell them apart).
 /// @param old_index if not null, receives for each new atom its index in S
 /// @pre S valid
 MedialSurface spatially_sorted(const MedialSurface& s, std::vector<int>* old_index = nullptr);

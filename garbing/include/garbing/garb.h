@@ -49,7 +49,9 @@ struct Garbing {
 /// T = build_octree(G), M1 = extract_coarse_mesh(T), M2 = refine_mesh(M1, T, G). The result
 /// is the same at any thread count and for the atoms in any order (atoms with equal centre and
 /// radius but different edges or faces aside).
-/// @pre atoms valid; options as each stage documents   @throws InvalidInput
+/// @pre options as each stage documents
+/// @throws InvalidInput if the atoms are invalid (validate(); messages name the caller's
+///         indices) or the stages refuse them
 Garbing garb(const MedialSurface& atoms, const GarbOptions& opt = {});
 
 }  // namespace mg::garbing

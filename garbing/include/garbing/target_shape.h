@@ -52,6 +52,11 @@ struct ConeOptions {
 /// Parses "rt", "all", "edges" or "none". @throws InvalidInput
 ConeSource parse_cone_source(const std::string& name);
 
+/// Checks that every radius is > 0, as G of the atoms alone needs (a ball of radius 0 is a
+/// point; only a medial mesh's hulls give it a volume).
+/// @throws InvalidInput naming the first atom of radius 0 (its index in `atoms`)
+void require_positive_radii(const MedialSurface& atoms);
+
 /// The pairs (i < j) that get a cone: from `opt.source`, kept when the two balls intersect,
 /// neither contains the other, and the circle-ratio and collar filters pass. Sorted. Chosen
 /// on the atoms as given (world coordinates).
