@@ -176,7 +176,7 @@ class EnvelopeSampler {
     if (g_.is_sphere(i)) {
       balls = {g_.sphere(i)};
     } else if (g_.is_cone(i)) {
-      balls = {g_.atoms().atoms[g_.cone(i).a], g_.atoms().atoms[g_.cone(i).b]};
+      balls = {g_.atoms().atoms[g_.cone_atoms(i)[0]], g_.atoms().atoms[g_.cone_atoms(i)[1]]};
     } else {
       const garbing::Slab& k = g_.slab(i);
       for (int a = 0; a < 3; ++a) balls.push_back({k.c[a], k.r[a]});
@@ -251,8 +251,8 @@ class EnvelopeSampler {
     std::vector<int> cone_atoms;
     for (int i : candidates)
       if (g_.is_cone(i)) {
-        cone_atoms.push_back(g_.cone(i).a);
-        cone_atoms.push_back(g_.cone(i).b);
+        cone_atoms.push_back(g_.cone_atoms(i)[0]);
+        cone_atoms.push_back(g_.cone_atoms(i)[1]);
       }
     std::sort(cone_atoms.begin(), cone_atoms.end());
     candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
@@ -342,7 +342,7 @@ class EnvelopeSampler {
       v = q - g_.sphere(i).centre;
       t.value = v.norm() - g_.sphere(i).radius;
     } else {
-      const garbing::Cone& k = g_.cone(i);
+      const garbing::Cone k = g_.cone(i);
       const double along = garbing::hull_parameter(k, q);
       v = q - (k.c1 + (along * k.length) * k.u);  // as hull_distance computes it
       t.value = v.norm() - (k.r1 + along * (k.r2 - k.r1));

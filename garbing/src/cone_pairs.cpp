@@ -1,6 +1,7 @@
 // cone_pairs(): which pairs of atoms get a cone. The one CGAL translation unit of mg::garbing.
 #include "core/detail/cgal_conversions.h"
 #include "core/errors.h"
+#include "garbing/detail/regular_edges.h"
 #include "garbing/target_shape.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <tuple>
 
 namespace mg::garbing {
@@ -34,11 +36,13 @@ using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb, CGAL::Parallel_tag>;
 using Regular =
     CGAL::Regular_triangulation_3<K, Tds, CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>>;
 
-/// Edges of the regular triangulation of the atoms (weights r^2), as sorted atom pairs.
+}  // namespace
+
 /// Hidden atoms (whose power cell is empty) have no vertex and no edge; of atoms whose
 /// weighted points are equal (centre and r^2), only the first (lowest index) is inserted, so which
 /// of them carries the vertex does not depend on the threads' order.
-std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
+std::vector<std::array<int, 2>> detail::regular_edges(const MedialSurface& atoms,
+                                                      std::size_t bucket_entries) {
   const std::size_t count = atoms.atoms.size();
   std::vector<int> order(count);
   for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<int>(i);
@@ -64,14 +68,17 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
                         a.centre.z());
   }
   Regular::Lock_data_structure locks(box, 50);
-  Regular rt(points.begin(), points.end(), &locks);
+  auto rt = std::make_unique<Regular>(points.begin(), points.end(), &locks);
+  std::vector<std::pair<Regular::Weighted_point, int>>().swap(points);
+  std::vector<std::uint8_t>().swap(first_of_its_ball);
+  std::vector<int>().swap(order);
   // The six edges of every finite cell, bucketed by their lower atom and each kept once.
   // (CGAL's edge iterator turns around every edge to visit it once, and
   // number_of_finite_edges() runs it too: most of this function's time when it was used.) A
   // triangulation of fewer than four points has no cell: its edges come from the iterator.
   std::vector<std::array<int, 2>> edges;
-  if (rt.dimension() < 3) {
-    for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
+  if (rt->dimension() < 3) {
+    for (auto e = rt->finite_edges_begin(); e != rt->finite_edges_end(); ++e) {
       int a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
       if (a > b) std::swap(a, b);
       edges.push_back({a, b});
@@ -80,9 +87,13 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
     return edges;
   }
   const std::size_t n = atoms.atoms.size();
-  std::vector<int> start(n + 2, 0), upper;
+  // Each cell lists an edge once per cell around it (about five times): the buckets are filled
+  // for a range of lower atoms at a time, a pass over the cells each, so that they never hold
+  // more than bucket_entries (by default 32 MB; at a million atoms, 39 million entries in all,
+  // five passes: 156 MB at once was the peak of G's construction).
+  std::vector<std::size_t> start(n + 2, 0);
   auto each_edge = [&](auto&& f) {
-    for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c) {
+    for (auto c = rt->finite_cells_begin(); c != rt->finite_cells_end(); ++c) {
       const int v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
                         c->vertex(3)->info()};
       for (int i = 0; i < 4; ++i)
@@ -91,29 +102,55 @@ std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms) {
   };
   each_edge([&](int a, int) { ++start[a + 2]; });
   for (std::size_t a = 2; a < start.size(); ++a) start[a] += start[a - 1];
-  upper.resize(static_cast<std::size_t>(start.back()));
-  each_edge([&](int a, int b) { upper[start[a + 1]++] = b; });  // start[a + 1]: a's fill point
-  // Per atom, in parallel: its upper neighbours sorted and counted once each, then written.
-  std::vector<int> distinct(n + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t a = r.begin(); a != r.end(); ++a) {
-                        const auto first = upper.begin() + start[a];
-                        const auto last = upper.begin() + start[a + 1];
-                        std::sort(first, last);
-                        distinct[a + 1] = static_cast<int>(std::unique(first, last) - first);
-                      }
-                    });
-  for (std::size_t a = 0; a < n; ++a) distinct[a + 1] += distinct[a];
-  edges.resize(static_cast<std::size_t>(distinct[n]));
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t a = r.begin(); a != r.end(); ++a)
-                        for (int k = distinct[a]; k < distinct[a + 1]; ++k)
-                          edges[k] = {static_cast<int>(a), upper[start[a] + k - distinct[a]]};
-                    });
+  // start[a + 1]: where atom a's entries begin; each pass moves it to their end (the next
+  // atom's begin), so that start[a] .. start[a + 1] are atom a's once its pass is done.
+  std::vector<int> upper;
+  std::vector<int> distinct;
+  std::vector<std::vector<std::array<int, 2>>> parts;
+  for (std::size_t lo = 0; lo < n;) {
+    std::size_t hi = lo + 1;
+    while (hi < n && start[hi + 2] - start[lo + 1] <= bucket_entries) ++hi;
+    const std::size_t base = start[lo + 1];
+    upper.resize(start[hi + 1] - base);
+    const int first_atom = static_cast<int>(lo), end_atom = static_cast<int>(hi);
+    each_edge([&](int a, int b) {
+      if (a >= first_atom && a < end_atom) upper[start[a + 1]++ - base] = b;
+    });
+    // Per atom, in parallel: its upper neighbours sorted and counted once each, then written.
+    distinct.assign(hi - lo + 1, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(lo, hi, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t a = r.begin(); a != r.end(); ++a) {
+                          const auto first = upper.begin() + (start[a] - base);
+                          const auto last = upper.begin() + (start[a + 1] - base);
+                          std::sort(first, last);
+                          distinct[a - lo + 1] = static_cast<int>(std::unique(first, last) - first);
+                        }
+                      });
+    for (std::size_t a = lo; a < hi; ++a) distinct[a - lo + 1] += distinct[a - lo];
+    std::vector<std::array<int, 2>>& part = parts.emplace_back(distinct[hi - lo]);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(lo, hi, 4096),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t a = r.begin(); a != r.end(); ++a)
+            for (int k = distinct[a - lo]; k < distinct[a - lo + 1]; ++k)
+              part[k] = {static_cast<int>(a), upper[start[a] - base + k - distinct[a - lo]]};
+        });
+    lo = hi;
+  }
+  rt.reset();
+  std::vector<int>().swap(upper);
+  std::size_t total = 0;
+  for (const auto& part : parts) total += part.size();
+  edges.reserve(total);
+  for (auto& part : parts) {
+    edges.insert(edges.end(), part.begin(), part.end());
+    std::vector<std::array<int, 2>>().swap(part);
+  }
   return edges;
 }
+
+namespace {
 
 /// Every pair of intersecting balls, found through the primitives' hierarchy.
 std::vector<std::array<int, 2>> intersecting_pairs(const MedialSurface& atoms) {
@@ -154,7 +191,7 @@ std::vector<std::array<int, 2>> cone_pairs(const MedialSurface& atoms, const Con
     case ConeSource::none:
       return {};
     case ConeSource::regular_triangulation:
-      candidates = regular_edges(atoms);
+      candidates = detail::regular_edges(atoms);
       break;
     case ConeSource::all_pairs:
       candidates = intersecting_pairs(atoms);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace mg::garbing {
 
@@ -75,15 +76,15 @@ EnvelopePrimitives envelope_primitives(const MedialSurface& s) {
   return out;
 }
 
-TargetShape make_target_shape(const MedialSurface& atoms, PrimitiveSet primitives,
+TargetShape make_target_shape(MedialSurface atoms, PrimitiveSet primitives,
                               const ConeOptions& cones, const Frame& frame) {
   if (resolve(primitives, atoms) == PrimitiveSet::atoms)
-    return make_target_shape(atoms, cones, frame);
+    return make_target_shape(std::move(atoms), cones, frame);
   if (std::none_of(atoms.atoms.begin(), atoms.atoms.end(),
                    [](const MedialAtom& a) { return a.radius > 0; }))
     throw InvalidInput("every atom has radius 0: the envelope has no volume to garb");
   const EnvelopePrimitives e = envelope_primitives(atoms);
-  return TargetShape(atoms, e.cones, e.slabs, frame, e.counts);
+  return TargetShape(std::move(atoms), e.cones, e.slabs, frame, e.counts);
 }
 
 }  // namespace mg::garbing

@@ -65,6 +65,21 @@ int leaf_entered(const Octree& tree, const Vec3& q, const Vec3& dir) {
   return find_cell(tree, tree.depth, ijk);
 }
 
+/// For local_entry: the interval [a, z], z >= 0, of the line v + t dir in the cone's solid,
+/// when the cone may be entered by `first`. A cone entered by then (or holding v) meets the
+/// segment [v, v + first dir] inside its bounding ball: a cheap rejection of most (dir is unit;
+/// slack for rounding), before the cone is restored. Out of line: the balls' path stays small.
+[[gnu::noinline]] bool cone_interval(const StoredCone& stored, const Vec3& v, const Vec3& dir,
+                                     double first, double& a, double& z) {
+  Vec3 centre;
+  double radius2;
+  bounding_ball(stored, centre, radius2);
+  const Vec3 w = centre - v;
+  const double along = std::clamp(w.dot(dir), 0.0, first);
+  if ((w - along * dir).squaredNorm() > radius2 * (1 + 1e-9)) return false;
+  return line_interval(restored(stored), v, dir, a, z) && z >= 0;
+}
+
 /// The first entry at t in (0, t_limit] of the ray v + t dir into the union, from the
 /// octree's lists alone: P over the locale's cover box, then the lists of the leaves the ray
 /// crosses after it, in order. The smallest entry so far is the first into the union once
@@ -81,16 +96,10 @@ bool local_entry(const Context& ctx, const Vec3& v, const Vec3& dir, const Local
   bool inside = false;
   auto enter = [&](PrimitiveId g) {
     if (inside) return;  // settled: the caller's run query (and `first` may be <= 0)
-    if (ctx.g.is_cone(g)) {
-      // A cone entered by `first` (or holding v) meets the segment [v, v + first dir] inside
-      // its bounding ball: a cheap rejection of most (dir is unit; slack for rounding).
-      const Cone& k = ctx.g.cone(g);
-      const Vec3 w = k.bound_centre - v;
-      const double along = std::clamp(w.dot(dir), 0.0, first);
-      if ((w - along * dir).squaredNorm() > k.bound_radius2 * (1 + 1e-9)) return;
-    }
     double a, z;
-    if (!ctx.g.ray_interval(g, v, dir, a, z) || z < 0) return;
+    if (ctx.g.is_cone(g) ? !cone_interval(ctx.g.stored_cone(g), v, dir, first, a, z)
+                         : !ctx.g.ray_interval(g, v, dir, a, z) || z < 0)
+      return;
     if (a <= 0) inside = true;  // only a primitive of P can hold v, which lies in the cover
     first = std::min(first, a);
   };

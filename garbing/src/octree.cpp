@@ -80,7 +80,7 @@ class OctreeBuilder {
             const auto [first, last] = g_.cones_of_atom(static_cast<int>(a));
             double most = 0;
             for (const PrimitiveId* id = first; id != last; ++id) {
-              const Cone& k = g_.cone(*id);
+              const Cone k = g_.cone(*id);
               const bool low = k.a == static_cast<int>(a);
               const double reach = fill_reach(k, low) * (1 + 1e-9) + slack;
               const std::size_t p = static_cast<std::size_t>(id - base);
@@ -152,7 +152,7 @@ class OctreeBuilder {
     if (!joined_by_edges_) return false;
     const auto [first, last] = g_.cones_of_atom(i);
     for (const PrimitiveId* c = first; c != last; ++c)
-      if (g_.cone(*c).a == j || g_.cone(*c).b == j) return true;
+      if (g_.cone_atoms(*c)[0] == j || g_.cone_atoms(*c)[1] == j) return true;
     return false;
   }
 
@@ -162,8 +162,8 @@ class OctreeBuilder {
   /// The atoms of a hull (cone or slab), -1 padded.
   std::array<int, 3> corners(int p) const {
     if (g_.is_slab(p)) return g_.slab(p).atoms;
-    const Cone& k = g_.cone(p);
-    return {k.a, k.b, -1};
+    const auto [a, b] = g_.cone_atoms(p);
+    return {a, b, -1};
   }
 
   static bool share_atom(const std::array<int, 3>& x, const std::array<int, 3>& y) {
@@ -189,12 +189,12 @@ class OctreeBuilder {
       if (share_atom(corners(p), sq.atoms)) return true;
       return g_.is_slab(p) ? slabs_meet(g_.slab(p), sq) : slab_meets_cone(sq, g_.cone(p));
     }
-    const Cone& kq = g_.cone(q);
+    const Cone kq = g_.cone(q);
     if (p < n) {
       if (p == kq.a || p == kq.b) return true;
       return hull_distance(kq, g_.sphere(p).centre) <= g_.sphere(p).radius;
     }
-    const Cone& kp = g_.cone(p);
+    const Cone kp = g_.cone(p);
     if (kp.a == kq.a || kp.a == kq.b || kp.b == kq.a || kp.b == kq.b) return true;
     return hulls_meet(kp, kq);
   }
@@ -269,11 +269,17 @@ class OctreeBuilder {
       for (int i : cell.spheres) {
         find(i);
         const auto [first, last] = g_->cones_of_atom(i);
-        for (const PrimitiveId* c = first; c != last; ++c) unite(g_->cone(*c).a, g_->cone(*c).b);
+        for (const PrimitiveId* c = first; c != last; ++c) {
+          const auto [a, b] = g_->cone_atoms(*c);
+          unite(a, b);
+        }
         const auto [first_slab, last_slab] = g_->slabs_of_atom(i);
         for (const PrimitiveId* c = first_slab; c != last_slab; ++c) unite_corners(*c);
       }
-      for (int k : cell.cones) unite(g_->cone(n + k).a, g_->cone(n + k).b);
+      for (int k : cell.cones) {
+        const auto [a, b] = g_->cone_atoms(n + k);
+        unite(a, b);
+      }
       for (int k : cell.slabs) unite_corners(g_->slab_id(k));
     }
     /// Whether the listed primitives' atoms are one class.
@@ -288,7 +294,7 @@ class OctreeBuilder {
       for (int i : cell.spheres)
         if (!same(i)) return false;
       for (int k : cell.cones)
-        if (!same(g_->cone(n + k).a)) return false;
+        if (!same(g_->cone_atoms(n + k)[0])) return false;
       for (int k : cell.slabs)
         if (!same(g_->slab(g_->slab_id(k)).atoms[0])) return false;
       return true;
@@ -301,14 +307,14 @@ class OctreeBuilder {
         if (seen(i)) return true;
         const auto [first, last] = g_->cones_of_atom(i);
         for (const PrimitiveId* c = first; c != last; ++c)
-          if (seen(g_->cone(*c).a) || seen(g_->cone(*c).b)) return true;
+          if (seen(g_->cone_atoms(*c)[0]) || seen(g_->cone_atoms(*c)[1])) return true;
         const auto [first_slab, last_slab] = g_->slabs_of_atom(i);
         for (const PrimitiveId* c = first_slab; c != last_slab; ++c)
           for (int a : g_->slab(*c).atoms)
             if (seen(a)) return true;
       }
       for (int k : cell.cones)
-        if (seen(g_->cone(n + k).a) || seen(g_->cone(n + k).b)) return true;
+        if (seen(g_->cone_atoms(n + k)[0]) || seen(g_->cone_atoms(n + k)[1])) return true;
       for (int k : cell.slabs)
         for (int a : g_->slab(g_->slab_id(k)).atoms)
           if (seen(a)) return true;
@@ -614,9 +620,11 @@ class OctreeBuilder {
     auto consider = [&](int k) {
       if (stamp[k] == generation) return;
       stamp[k] = generation;
-      const Cone& cone = g_.cone(n + k);
-      const unsigned via_ball = mask_of_atom[cone.a] | mask_of_atom[cone.b];
-      if ((via_ball | skip) == 0xFF || !near_crease_fill(cone, parent_lo, 2 * side)) return;
+      const auto [a, b] = g_.cone_atoms(n + k);
+      const unsigned via_ball = mask_of_atom[a] | mask_of_atom[b];
+      if ((via_ball | skip) == 0xFF) return;
+      const Cone cone = g_.cone(n + k);
+      if (!near_crease_fill(cone, parent_lo, 2 * side)) return;
       for (int j = 0; j < 8; ++j) {
         if ((skip >> j & 1) || (via_ball >> j & 1)) continue;
         const Vec3 child_lo(lo[0][j & 1], lo[1][(j >> 1) & 1], lo[2][(j >> 2) & 1]);
@@ -894,7 +902,7 @@ class OctreeBuilder {
         return true;
     }
     for (int k : cell.cones) {
-      const Cone& cone = g_.cone(n + k);
+      const Cone cone = g_.cone(n + k);
       if (std::all_of(corners.begin(), corners.end(),
                       [&](const Vec3& q) { return hull_distance(cone, q) <= 0; }))
         return true;

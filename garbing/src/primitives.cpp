@@ -48,13 +48,6 @@ double generator_parameter(const Cone& k, double x, double rho) {
 
 }  // namespace
 
-Crease crease(double length, double r1, double r2) {
-  Crease c;
-  c.along = (length * length + r1 * r1 - r2 * r2) / (2 * length);
-  c.radius = std::sqrt(std::max(0.0, r1 * r1 - c.along * c.along));
-  return c;
-}
-
 Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) {
   Cone c;
   c.a = a;
@@ -67,29 +60,22 @@ Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b) 
   c.u = axis / c.length;
   c.sin_phi = (first.radius - second.radius) / c.length;
   c.cos_phi = std::sqrt(std::max(0.0, 1 - c.sin_phi * c.sin_phi));
-  c.t_lo = first.radius * c.sin_phi;
-  c.rho_lo = first.radius * c.cos_phi;
-  c.t_hi = c.length + second.radius * c.sin_phi;
-  c.rho_hi = second.radius * c.cos_phi;
-  const double half = (c.t_hi - c.t_lo) / 2, rim = std::max(c.rho_lo, c.rho_hi);
-  c.bound_centre = c.c1 + (c.t_lo + half) * c.u;
-  c.bound_radius2 = half * half + rim * rim;
-  c.dr = c.r2 - c.r1;
-  c.lipschitz = c.length + std::abs(c.dr);
-  c.disjoint = !(c.length < c.r1 + c.r2);
-  if (c.disjoint) {
-    c.fill_lo[0] = c.t_lo;
-    c.fill_hi[0] = c.t_hi;
-    c.fill_hi[1] = rim;
-    return c;
-  }
-  c.crease = crease(c.length, c.r1, c.r2);
-  const double x0 = c.crease.along, rho0 = c.crease.radius;
-  c.fill_lo[0] = std::min({x0, c.t_lo, c.t_hi});
-  c.fill_lo[1] = std::min({rho0, c.rho_lo, c.rho_hi});
-  c.fill_hi[0] = std::max({x0, c.t_lo, c.t_hi});
-  c.fill_hi[1] = std::max({rho0, c.rho_lo, c.rho_hi});
+  if (c.length < c.r1 + c.r2) c.crease = crease(c.length, c.r1, c.r2);
+  complete_cone(c);
   return c;
+}
+
+StoredCone stored(const Cone& cone) {
+  StoredCone s;
+  s.a = cone.a;
+  s.b = cone.b;
+  s.c1 = cone.c1;
+  s.u = cone.u;
+  s.r1 = cone.r1;
+  s.length = cone.length;
+  s.r2 = cone.r2;
+  s.cos_phi = cone.cos_phi;
+  return s;
 }
 
 double hull_parameter(const Cone& k, const Vec3& p) {
@@ -114,16 +100,30 @@ Vec3 migration_vector(const MedialAtom& ball, const Vec3& v) {
   return ball.radius * d / d2;
 }
 
-Vec3 migration_vector(const Cone& cone, const Vec3& v) {
-  const Vec3 w = v - cone.c1;
-  const double x = w.dot(cone.u);
-  const double rho = (w - x * cone.u).norm();
+namespace {
+
+Vec3 cone_migration(const Vec3& c1, const Vec3& u, double length, double r1, double sin_phi,
+                    double cos_phi, const Vec3& v) {
+  const Vec3 w = v - c1;
+  const double x = w.dot(u);
+  const double rho = (w - x * u).norm();
   if (rho == 0) return Vec3::Zero();
-  const double t = x - rho * cone.sin_phi / cone.cos_phi;  // foot of the normal on the axis
-  if (t < 0 || t > cone.length) return Vec3::Zero();
-  const Vec3 d = v - (cone.c1 + t * cone.u);
-  const double r = cone.r1 - t * cone.sin_phi;  // radius of the ball tangent there
+  const double t = x - rho * sin_phi / cos_phi;  // foot of the normal on the axis
+  if (t < 0 || t > length) return Vec3::Zero();
+  const Vec3 d = v - (c1 + t * u);
+  const double r = r1 - t * sin_phi;  // radius of the ball tangent there
   return r * d / d.squaredNorm();
+}
+
+}  // namespace
+
+Vec3 migration_vector(const Cone& cone, const Vec3& v) {
+  return cone_migration(cone.c1, cone.u, cone.length, cone.r1, cone.sin_phi, cone.cos_phi, v);
+}
+
+Vec3 migration_vector(const StoredCone& cone, const Vec3& v) {
+  const double sin_phi = (cone.r1 - cone.r2) / cone.length;  // restored()'s
+  return cone_migration(cone.c1, cone.u, cone.length, cone.r1, sin_phi, cone.cos_phi, v);
 }
 
 bool line_interval(const MedialAtom& s, const Vec3& o, const Vec3& d, double& t0, double& t1) {

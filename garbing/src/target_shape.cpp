@@ -11,6 +11,7 @@
 #include <limits>
 #include <numeric>
 #include <queue>
+#include <utility>
 
 namespace mg::garbing {
 
@@ -63,16 +64,19 @@ void index_by_atom(std::size_t atom_count, std::size_t count, int first_id, cons
 
 }  // namespace
 
-TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
+TargetShape::TargetShape(MedialSurface atoms, const std::vector<std::array<int, 2>>& pairs,
                          const Frame& frame)
-    : TargetShape(atoms, pairs, {}, frame) {
+    : TargetShape(std::move(atoms), pairs, {}, frame) {
   envelope_ = false;
 }
 
-TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
+TargetShape::TargetShape(MedialSurface atoms, const std::vector<std::array<int, 2>>& pairs,
                          const std::vector<std::array<int, 3>>& triples, const Frame& frame,
                          const EnvelopeCounts& counts)
-    : frame_(frame), atoms_{atoms.atoms, {}, {}}, counts_(counts), bvh_(std::make_unique<Bvh>()) {
+    : frame_(frame),
+      atoms_{std::move(atoms.atoms), {}, {}},
+      counts_(counts),
+      bvh_(std::make_unique<Bvh>()) {
   // The world frame copies the centres as they are (a transform by the identity could still
   // change the sign of a zero).
   if (!frame_.is_world())
@@ -80,7 +84,7 @@ TargetShape::TargetShape(const MedialSurface& atoms, const std::vector<std::arra
   cones_.resize(pairs.size());
   tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t k) {
     const auto& p = pairs[k];
-    cones_[k] = make_cone(atoms_.atoms[p[0]], atoms_.atoms[p[1]], p[0], p[1]);
+    cones_[k] = stored(make_cone(atoms_.atoms[p[0]], atoms_.atoms[p[1]], p[0], p[1]));
   });
   const std::size_t n = atoms_.atoms.size();
   index_by_atom(
@@ -119,15 +123,15 @@ TargetShape::~TargetShape() = default;
 TargetShape::TargetShape(TargetShape&&) noexcept = default;
 TargetShape& TargetShape::operator=(TargetShape&&) noexcept = default;
 
-TargetShape make_target_shape(const MedialSurface& atoms, const ConeOptions& cones,
-                              const Frame& frame) {
-  return TargetShape(atoms, cone_pairs(atoms, cones), frame);
+TargetShape make_target_shape(MedialSurface atoms, const ConeOptions& cones, const Frame& frame) {
+  const std::vector<std::array<int, 2>> pairs = cone_pairs(atoms, cones);
+  return TargetShape(std::move(atoms), pairs, frame);
 }
 
 Vec3 TargetShape::migration_vector(PrimitiveId i, const Vec3& v) const {
   if (is_slab(i)) return garbing::migration_vector(slab(i), v);
   return is_sphere(i) ? garbing::migration_vector(atoms_.atoms[i], v)
-                      : garbing::migration_vector(cone(i), v);
+                      : garbing::migration_vector(stored_cone(i), v);
 }
 
 bool TargetShape::primitive_contains(PrimitiveId i, const Vec3& p, double eps) const {
@@ -145,7 +149,7 @@ bool TargetShape::ray_interval(PrimitiveId i, const Vec3& origin, const Vec3& di
 
 bool TargetShape::contains(const Vec3& p) const {
   bool inside = false;
-  bvh_->visit([&](const detail::Box& b) { return !inside && b.squared_distance(p) == 0; },
+  bvh_->visit([&](const detail::StoredBox& b) { return !inside && b.squared_distance(p) == 0; },
               [&](int i) {
                 if (inside) return;
                 if (is_sphere(i)) {
@@ -163,7 +167,7 @@ bool TargetShape::contains(const Vec3& p) const {
 bool TargetShape::within(const Vec3& p, double tol) const {
   bool found = false;
   const double tol2 = tol * tol;
-  bvh_->visit([&](const detail::Box& b) { return !found && b.squared_distance(p) <= tol2; },
+  bvh_->visit([&](const detail::StoredBox& b) { return !found && b.squared_distance(p) <= tol2; },
               [&](int i) {
                 if (found) return;
                 if (is_sphere(i)) {
@@ -323,7 +327,7 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
   };
   std::vector<Candidate> around;
   const double on_surface = -1e-12 * (1 + p.norm());  // p on a surface counts as inside it
-  bvh_->visit([&](const detail::Box& b) { return b.squared_distance(p) == 0; },
+  bvh_->visit([&](const detail::StoredBox& b) { return b.squared_distance(p) == 0; },
               [&](int i) {
                 if (!primitive_contains(i, p, on_surface)) return;
                 Vec3 q;
@@ -346,7 +350,7 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
     const double eps = 1e-12 * (1 + q.norm());
     bool free = true;
     bvh_->visit(
-        [&](const detail::Box& bb) { return free && bb.squared_distance(q) == 0; },
+        [&](const detail::StoredBox& bb) { return free && bb.squared_distance(q) == 0; },
         [&](int k) { free = free && (k == i || k == j || !primitive_contains(k, q, eps)); });
     return free;
   };
@@ -440,7 +444,7 @@ std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t 
           atoms_.atoms[i].radius * Vec3(s * std::cos(phi), s * std::sin(phi), z);
     } else {
       // Lateral area element ~ rho(s): invert the cumulative of a linear density on [0, 1].
-      const Cone& c = cone(i);
+      const Cone c = cone(i);
       const double a = c.rho_lo, b = c.rho_hi;
       const double s = std::abs(b - a) < 1e-15 * (a + b)
                            ? u
@@ -452,7 +456,7 @@ std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t 
     }
     const double eps = 1e-12 * (1 + q.norm());
     bool exposed = true;
-    bvh_->visit([&](const detail::Box& bb) { return exposed && bb.squared_distance(q) == 0; },
+    bvh_->visit([&](const detail::StoredBox& bb) { return exposed && bb.squared_distance(q) == 0; },
                 [&](int j) { exposed = exposed && (j == i || !primitive_contains(j, q, eps)); });
     points[k] = q;
     keep[k] = exposed;
@@ -466,7 +470,7 @@ std::vector<Vec3> TargetShape::sample_boundary(std::size_t count, std::uint64_t 
 void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi,
                                          std::vector<PrimitiveId>& out) const {
   const std::size_t start = out.size();
-  bvh_->visit([&](const detail::Box& b) { return b.overlaps(lo, hi); },
+  bvh_->visit([&](const detail::StoredBox& b) { return b.overlaps(lo, hi); },
               [&](int i) {
                 if (is_sphere(i)) {
                   if (meets_box(atoms_.atoms[i], lo, hi)) out.push_back(i);
@@ -476,7 +480,7 @@ void TargetShape::primitives_meeting_box(const Vec3& lo, const Vec3& hi,
                   if (prism_meets_box(slab(i), lo, hi)) out.push_back(i);
                   return;
                 }
-                const Cone& k = cone(i);
+                const Cone k = cone(i);
                 if (meets_box(atoms_.atoms[k.a], lo, hi) || meets_box(atoms_.atoms[k.b], lo, hi) ||
                     hull_meets_box(k, lo, hi))
                   out.push_back(i);

@@ -5,6 +5,7 @@
 
 #include "garbing/detail/line_box.h"
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -39,62 +40,72 @@ struct Box {
   }
 };
 
+/// A box as the hierarchy keeps it after the build: floats, each bound rounded outward (never
+/// inside the double box it stands for), so a test against it errs only toward "may meet".
+/// Half the memory of Box (at a million atoms 4.3 million primitives and as many nodes).
+struct StoredBox {
+  Eigen::Vector3f lo, hi;
+  StoredBox() = default;
+  explicit StoredBox(const Box& b) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = down(b.lo[k]);
+      hi[k] = up(b.hi[k]);
+    }
+  }
+  static float down(double x) {
+    const float f = static_cast<float>(x);
+    return f > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  }
+  static float up(double x) {
+    const float f = static_cast<float>(x);
+    return f < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  }
+  double squared_distance(const Eigen::Vector3d& p) const {
+    return (lo.cast<double>() - p).cwiseMax(p - hi.cast<double>()).cwiseMax(0.0).squaredNorm();
+  }
+  bool overlaps(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+    return (lo.cast<double>().array() <= b.array()).all() &&
+           (a.array() <= hi.cast<double>().array()).all();
+  }
+  bool clip(const Eigen::Vector3d& o, const Eigen::Vector3d& inv_d, double& t0, double& t1) const {
+    return detail::clip_line_to_box(lo.cast<double>(), hi.cast<double>(), o, inv_d, t0, t1);
+  }
+};
+
 }  // namespace detail
 
 /// A binary bounding-volume hierarchy over the primitives' boxes (median split on the longest
 /// axis of the box centres; up to 4 primitives per leaf).
 struct TargetShape::Bvh {
   using Box = detail::Box;
+  using StoredBox = detail::StoredBox;
   static constexpr double kInf = detail::kInf;
 
   struct Node {
-    Box box;
+    StoredBox box;
     int first = 0, count = 0;  // leaf: primitives order[first .. first + count)
     int right = -1;            // inner node: left child is the next node, right child here
   };
   std::vector<Node> nodes;
   std::vector<int> order;
-  std::vector<Box> boxes;  // during build: by primitive id; after: in `order`
+  std::vector<StoredBox> boxes;  // the primitives' boxes, in `order`: a leaf's are contiguous
+  std::vector<Box> boxes_by_id;  // during the build only: the primitives' boxes by id
 
-  /// Over the primitives `ids` (their boxes indexed by id).
+  /// Over the primitives `ids` (their boxes indexed by id). The tree is built from the double
+  /// boxes; the nodes and primitives keep them as StoredBox.
   void build(std::vector<Box> primitive_boxes, std::vector<int> ids) {
-    boxes = std::move(primitive_boxes);
+    boxes_by_id = std::move(primitive_boxes);
     order = std::move(ids);
-    nodes.reserve(2 * order.size() / 4 + 2);
+    // A tree over m primitives has at most 2 m - 1 nodes. Reserved, not touched: only the
+    // pages the nodes fill become resident, and no growth copies the array (at a million
+    // atoms a copy was the peak of G's construction).
+    nodes.reserve(2 * order.size());
     if (!order.empty()) build(nodes, 0, static_cast<int>(order.size()), 0);
-    // From now on boxes[i] is the box of primitive order[i]: a leaf's boxes are contiguous.
-    // Permuted in place (a second array of boxes would be the build's peak): position i takes
-    // the box at order[i], and a box is read before its own position is written. `order` is
-    // injective but may leave ids out (slabs without a prism): their positions start chains,
-    // walked first; what is left is cycles, each started from a saved box.
-    const std::size_t m = order.size();
-    std::vector<bool> is_source(boxes.size(), false), placed(m, false);
-    for (int id : order) is_source[static_cast<std::size_t>(id)] = true;
-    for (std::size_t head = 0; head < m; ++head) {
-      if (is_source[head]) continue;
-      for (std::size_t i = head;;) {
-        const std::size_t from = static_cast<std::size_t>(order[i]);
-        boxes[i] = boxes[from];
-        placed[i] = true;
-        if (from >= m) break;
-        i = from;
-      }
-    }
-    for (std::size_t start = 0; start < m; ++start) {
-      if (placed[start]) continue;
-      const Box saved = boxes[start];
-      for (std::size_t i = start;;) {
-        placed[i] = true;
-        const std::size_t from = static_cast<std::size_t>(order[i]);
-        if (from == start) {
-          boxes[i] = saved;
-          break;
-        }
-        boxes[i] = boxes[from];
-        i = from;
-      }
-    }
-    boxes.resize(m);
+    boxes.resize(order.size());
+    tbb::parallel_for(std::size_t(0), order.size(), [&](std::size_t i) {
+      boxes[i] = StoredBox(boxes_by_id[static_cast<std::size_t>(order[i])]);
+    });
+    std::vector<Box>().swap(boxes_by_id);
   }
 
   static double half_area(const Box& b) {
@@ -116,7 +127,7 @@ struct TargetShape::Bvh {
     std::array<bool, 3> spread;
     for (int axis = 0; axis < 3; ++axis) spread[axis] = centres.hi[axis] - centres.lo[axis] > 0;
     for (int i = first; heuristic && i < last; ++i) {
-      const Box& b = boxes[order[i]];
+      const Box& b = boxes_by_id[order[i]];
       for (int axis = 0; axis < 3; ++axis) {
         if (!spread[axis]) continue;
         const int k = bin_of(b, axis, centres.lo[axis], centres.hi[axis] - centres.lo[axis], kBins);
@@ -153,9 +164,10 @@ struct TargetShape::Bvh {
     }
     if (best_axis >= 0) {
       const double lo = centres.lo[best_axis], extent = centres.hi[best_axis] - lo;
-      const auto mid = std::stable_partition(
-          order.begin() + first, order.begin() + last,
-          [&](int id) { return bin_of(boxes[id], best_axis, lo, extent, kBins) <= best_bin; });
+      const auto mid =
+          std::stable_partition(order.begin() + first, order.begin() + last, [&](int id) {
+            return bin_of(boxes_by_id[id], best_axis, lo, extent, kBins) <= best_bin;
+          });
       return static_cast<int>(mid - order.begin());
     }
     Eigen::Index axis;
@@ -163,8 +175,8 @@ struct TargetShape::Bvh {
     const int mid = (first + last) / 2;
     std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + last,
                      [&](int a, int b) {
-                       const double ca = boxes[a].lo[axis] + boxes[a].hi[axis];
-                       const double cb = boxes[b].lo[axis] + boxes[b].hi[axis];
+                       const double ca = boxes_by_id[a].lo[axis] + boxes_by_id[a].hi[axis];
+                       const double cb = boxes_by_id[b].lo[axis] + boxes_by_id[b].hi[axis];
                        return ca < cb || (ca == cb && a < b);
                      });
     return mid;
@@ -188,11 +200,11 @@ struct TargetShape::Bvh {
     out.emplace_back();
     Box box, centres;
     for (int i = first; i < last; ++i) {
-      box.grow(boxes[order[i]]);
-      const Eigen::Vector3d c = (boxes[order[i]].lo + boxes[order[i]].hi) / 2;
+      box.grow(boxes_by_id[order[i]]);
+      const Eigen::Vector3d c = (boxes_by_id[order[i]].lo + boxes_by_id[order[i]].hi) / 2;
       centres.grow({c, c});
     }
-    out[id].box = box;
+    out[id].box = StoredBox(box);
     if (last - first <= 4) {
       out[id].first = first;
       out[id].count = last - first;
@@ -208,6 +220,7 @@ struct TargetShape::Bvh {
     // The left half goes straight after this node in `out`; the right one, built meanwhile in
     // its own array, is appended after it.
     std::vector<Node> right;
+    right.reserve(2 * static_cast<std::size_t>(last - mid));
     tbb::parallel_invoke([&] { build(out, first, mid, depth + 1); },
                          [&] { build(right, mid, last, depth + 1); });
     const int offset = static_cast<int>(out.size());
@@ -261,7 +274,7 @@ struct TargetShape::Bvh {
     const bool generic = dir[0] != 0 && dir[1] != 0 && dir[2] != 0;
     int near_side[3];
     for (int k = 0; k < 3; ++k) near_side[k] = inv[k] < 0;
-    auto clip = [&](const Box& b, double& t0, double& t1) {
+    auto clip = [&](const StoredBox& b, double& t0, double& t1) {
       if (!generic) return b.clip(origin, inv, t0, t1);
       for (int k = 0; k < 3; ++k) {
         const double enter = ((near_side[k] ? b.hi : b.lo)[k] - origin[k]) * inv[k];

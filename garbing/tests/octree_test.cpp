@@ -392,7 +392,7 @@ void expect_pruned_lists_hold_g(const mg::MedialSurface& s, const mg::garbing::C
   std::uniform_real_distribution<double> normal(-1, 1);
   long in_cones = 0;
   for (std::size_t k = 0; k < g.cone_count(); ++k) {
-    const mg::garbing::Cone& cone = g.cone(n + static_cast<int>(k));
+    const mg::garbing::Cone cone = g.cone(n + static_cast<int>(k));
     for (int sample = 0; sample < 40; ++sample) {
       Eigen::Vector3d dir(normal(gen), normal(gen), normal(gen));
       if (!(dir.norm() > 1e-3)) continue;

@@ -225,4 +225,29 @@ TEST(HullsMeet, AgreesWithTheDistanceBetweenSampledBalls) {
   }
 }
 
+TEST(StoredCone, RestoresTheConeBitForBit) {
+  // What G keeps of a cone gives back make_cone's Cone exactly, for intersecting and disjoint
+  // balls, and the shortcuts read from it (bounding ball, m_g) equal the restored cone's.
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-2, 2), radius(0.05, 1.5);
+  int disjoint = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const mg::MedialAtom a{Vector3d(u(gen), u(gen), u(gen)), radius(gen)};
+    const mg::MedialAtom b{Vector3d(u(gen), u(gen), u(gen)), radius(gen)};
+    if (!((b.centre - a.centre).norm() > std::abs(a.radius - b.radius))) continue;
+    const gb::Cone cone = gb::make_cone(a, b, 3, 8);
+    disjoint += cone.disjoint;
+    const gb::StoredCone kept = gb::stored(cone);
+    ASSERT_TRUE(mg_test::same_cone(gb::restored(kept), cone)) << "case " << k;
+    Vector3d centre;
+    double radius2;
+    gb::bounding_ball(kept, centre, radius2);
+    EXPECT_EQ(centre, cone.bound_centre);
+    EXPECT_EQ(radius2, cone.bound_radius2);
+    const Vector3d v(u(gen), u(gen), u(gen));
+    EXPECT_EQ(gb::migration_vector(kept, v), gb::migration_vector(cone, v));
+  }
+  EXPECT_GT(disjoint, 100);  // both kinds were met
+}
+
 }  // namespace

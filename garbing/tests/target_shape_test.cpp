@@ -1,5 +1,6 @@
 #include "garbing/target_shape.h"
 #include "core/errors.h"
+#include "garbing/detail/regular_edges.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -310,6 +311,68 @@ TEST(ConePairs, CollarLimitMatchesTheConeGeometry) {
   opt.max_collar = -1;
   EXPECT_THROW(gb::cone_pairs(s, opt), mg::InvalidInput);
   EXPECT_EQ(gb::ConeOptions{}.max_collar, 1.0);  // the default the cone study chose
+}
+
+TEST(TargetShape, ConesAreMakeConeOfTheirAtomsInItsFrame) {
+  // G keeps its cones slim and restores them on demand: each is make_cone of its two balls (in
+  // G's frame) bit for bit, and cone_atoms names the same atoms.
+  const mg::MedialSurface s = mg_test::blob(400, 0.2, 0.6, 3);
+  const gb::TargetShape g(s, gb::cone_pairs(s, {}), gb::bounding_cube_frame(s));
+  ASSERT_GT(g.cone_count(), 400u);
+  const int n = static_cast<int>(g.sphere_count());
+  for (int id = n; id < n + static_cast<int>(g.cone_count()); ++id) {
+    const gb::Cone k = g.cone(id);
+    ASSERT_TRUE(mg_test::same_cone(k, gb::make_cone(g.sphere(k.a), g.sphere(k.b), k.a, k.b)));
+    EXPECT_EQ(g.cone_atoms(id), (std::array<int, 2>{k.a, k.b}));
+  }
+}
+
+TEST(TargetShape, BoxQueriesFindBallsThatOnlyTouchTheBox) {
+  // The hierarchy keeps its boxes as floats rounded outward: a box that touches a ball at one
+  // point (its lower x at centre.x + r, exactly) still finds it, for centres and radii that
+  // floats do not hold.
+  std::mt19937 gen(9);
+  std::uniform_real_distribution<double> u(-3, 3), radius(0.01, 0.7);
+  mg::MedialSurface s;
+  for (int k = 0; k < 3000; ++k) s.atoms.push_back({Vector3d(u(gen), u(gen), u(gen)), radius(gen)});
+  const gb::TargetShape g(s, {});
+  std::vector<gb::PrimitiveId> found;
+  int checked = 0;
+  for (int i = 0; i < static_cast<int>(s.atoms.size()); ++i) {
+    const mg::MedialAtom& a = s.atoms[i];
+    for (int side : {-1, 1}) {
+      // The face x = c.x + side r of a thin box meets the ball at its pole only.
+      const double x = a.centre.x() + side * a.radius;
+      Vector3d lo = a.centre - Vector3d::Constant(0.25), hi = a.centre + Vector3d::Constant(0.25);
+      if (side > 0) {
+        lo.x() = x;
+        hi.x() = x + 1;
+      } else {
+        lo.x() = x - 1;
+        hi.x() = x;
+      }
+      if (!gb::meets_box(a, lo, hi)) continue;  // rounding put the pole outside: nothing owed
+      found.clear();
+      g.primitives_meeting_box(lo, hi, found);
+      ASSERT_TRUE(std::binary_search(found.begin(), found.end(), i)) << "ball " << i;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1500);
+}
+
+TEST(ConePairs, RegularEdgesTheSameWhateverTheBucketSize) {
+  // The triangulation's edges are gathered a range of lower atoms at a time: one atom per pass,
+  // a few, or all at once give the same sorted, distinct edges.
+  mg::MedialSurface s = mg_test::blob(300, 0.2, 0.8, 4);
+  for (std::size_t k = 0; k < 300; k += 11) s.atoms.push_back(s.atoms[k]);  // repeats
+  const auto all = gb::detail::regular_edges(s);
+  ASSERT_GT(all.size(), 600u);
+  EXPECT_TRUE(std::is_sorted(all.begin(), all.end()));
+  EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
+  for (const auto& e : all) EXPECT_LT(e[0], e[1]);
+  for (std::size_t bucket : {std::size_t(1), std::size_t(7), std::size_t(97), std::size_t(2000)})
+    EXPECT_EQ(gb::detail::regular_edges(s, bucket), all) << "bucket " << bucket;
 }
 
 }  // namespace

@@ -14,6 +14,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <cmath>
+
 namespace mg::garbing {
 
 /// The crease of two intersecting spheres: the circle where they meet. It lies in the plane
@@ -24,7 +27,12 @@ struct Crease {
 };
 
 /// @param length |c2 - c1|, model units   @pre |r1 - r2| < length < r1 + r2
-Crease crease(double length, double r1, double r2);
+inline Crease crease(double length, double r1, double r2) {
+  Crease c;
+  c.along = (length * length + r1 * r1 - r2 * r2) / (2 * length);
+  c.radius = std::sqrt(std::max(0.0, r1 * r1 - c.along * c.along));
+  return c;
+}
 
 /// The solid cone tangent to two balls (c1, r1), (c2, r2) neither of which holds the other,
 /// L > |r1 - r2|, whether or not they intersect (a medial mesh's edge joins balls that may not):
@@ -61,6 +69,73 @@ struct Cone {
 /// Builds the cone of atoms a and b. @pre neither ball holds the other: |c2 - c1| > |r2 - r1|
 Cone make_cone(const MedialAtom& first, const MedialAtom& second, int a, int b);
 
+/// Fills the fields of `c` that follow from a, b, c1, u, r1, length, r2, sin_phi, cos_phi and
+/// crease by products, sums and comparisons (make_cone's last step).
+inline void complete_cone(Cone& c) {
+  c.t_lo = c.r1 * c.sin_phi;
+  c.rho_lo = c.r1 * c.cos_phi;
+  c.t_hi = c.length + c.r2 * c.sin_phi;
+  c.rho_hi = c.r2 * c.cos_phi;
+  const double half = (c.t_hi - c.t_lo) / 2, rim = std::max(c.rho_lo, c.rho_hi);
+  c.bound_centre = c.c1 + (c.t_lo + half) * c.u;
+  c.bound_radius2 = half * half + rim * rim;
+  c.dr = c.r2 - c.r1;
+  c.lipschitz = c.length + std::abs(c.dr);
+  c.disjoint = !(c.length < c.r1 + c.r2);
+  if (c.disjoint) {
+    c.fill_lo[0] = c.t_lo;
+    c.fill_lo[1] = 0;
+    c.fill_hi[0] = c.t_hi;
+    c.fill_hi[1] = rim;
+    return;
+  }
+  const double x0 = c.crease.along, rho0 = c.crease.radius;
+  c.fill_lo[0] = std::min({x0, c.t_lo, c.t_hi});
+  c.fill_lo[1] = std::min({rho0, c.rho_lo, c.rho_hi});
+  c.fill_hi[0] = std::max({x0, c.t_lo, c.t_hi});
+  c.fill_hi[1] = std::max({rho0, c.rho_lo, c.rho_hi});
+}
+
+/// What G stores of a cone (88 bytes instead of Cone's 232: at a million atoms G holds 3.3
+/// million cones): its atoms, axis and radii, and cos(phi) (a square root).
+struct StoredCone {
+  int a = -1, b = -1;
+  Eigen::Vector3d c1, u;
+  double r1 = 0, length = 0, r2 = 0;
+  double cos_phi = 1;
+};
+
+/// The stored fields of a cone.
+StoredCone stored(const Cone& cone);
+
+/// The cone back from its stored fields: bit for bit the Cone make_cone built (the same
+/// expressions, in the same order, as make_cone's own).
+inline Cone restored(const StoredCone& s) {
+  Cone c;
+  c.a = s.a;
+  c.b = s.b;
+  c.c1 = s.c1;
+  c.u = s.u;
+  c.r1 = s.r1;
+  c.length = s.length;
+  c.r2 = s.r2;
+  c.sin_phi = (s.r1 - s.r2) / s.length;
+  c.cos_phi = s.cos_phi;
+  if (c.length < c.r1 + c.r2) c.crease = crease(c.length, c.r1, c.r2);
+  complete_cone(c);
+  return c;
+}
+
+/// restored(s).bound_centre and bound_radius2 alone (the same expressions), without the rest
+/// of the cone: a cheap rejection before restoring it.
+inline void bounding_ball(const StoredCone& s, Eigen::Vector3d& centre, double& radius2) {
+  const double sin_phi = (s.r1 - s.r2) / s.length;
+  const double t_lo = s.r1 * sin_phi, t_hi = s.length + s.r2 * sin_phi;
+  const double half = (t_hi - t_lo) / 2, rim = std::max(s.r1 * s.cos_phi, s.r2 * s.cos_phi);
+  centre = s.c1 + (t_lo + half) * s.u;
+  radius2 = half * half + rim * rim;
+}
+
 /// min over t in [0, 1] of |p - c(t)| - r(t): the distance from p to the cone's solid when p
 /// is outside it; when inside, minus the depth of p in the deepest ball B(c(t), r(t)), a lower
 /// bound on its depth in the solid. Closed form: the stationary t has the foot of p on the axis
@@ -75,6 +150,8 @@ double hull_parameter(const Cone& k, const Eigen::Vector3d& p);
 /// when v is on the axis, and for a cone when the foot falls outside [0, L].
 Eigen::Vector3d migration_vector(const MedialAtom& ball, const Eigen::Vector3d& v);
 Eigen::Vector3d migration_vector(const Cone& cone, const Eigen::Vector3d& v);
+/// The same as migration_vector(restored(cone), v), from the stored fields alone.
+Eigen::Vector3d migration_vector(const StoredCone& cone, const Eigen::Vector3d& v);
 
 /// The parameter interval [t0, t1] of the line o + t d inside the closed ball (resp. the
 /// cone's solid); false if the line misses it. @param d need not be unit; t in units of |d|

@@ -118,15 +118,17 @@ using PrimitiveId = int;
 class TargetShape {
  public:
   /// G of the atoms' balls and the cones of `pairs`, expressed in `frame` (atom centres
-  /// mapped by frame.to_local; world coordinates by default).
+  /// mapped by frame.to_local; world coordinates by default). G keeps the atoms: pass them
+  /// with std::move when the caller no longer needs them (no copy; their connectivity is
+  /// dropped).
   /// @pre atoms valid; every pair indexes two intersecting atoms, neither holding the other
-  TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
+  TargetShape(MedialSurface atoms, const std::vector<std::array<int, 2>>& pairs,
               const Frame& frame = {});
   /// G of a medial mesh's envelope (is_envelope()): the atoms' balls, the cones of `pairs` and
   /// the slabs of `triples`; `counts` are kept for reports. @pre atoms valid; each pair's balls
   /// neither holding the other; each triple's centres not collinear (envelope_primitives()
   /// chooses them so)
-  TargetShape(const MedialSurface& atoms, const std::vector<std::array<int, 2>>& pairs,
+  TargetShape(MedialSurface atoms, const std::vector<std::array<int, 2>>& pairs,
               const std::vector<std::array<int, 3>>& triples, const Frame& frame,
               const EnvelopeCounts& counts = {});
   ~TargetShape();
@@ -143,7 +145,16 @@ class TargetShape {
     return atoms_.atoms.size() + cones_.size() + slabs_.size();
   }
   const MedialAtom& sphere(PrimitiveId i) const { return atoms_.atoms[i]; }
-  const Cone& cone(PrimitiveId i) const { return cones_[i - atoms_.atoms.size()]; }
+  /// Cone i, restored from what G stores of it (primitives.h, StoredCone): a value, bit for
+  /// bit make_cone of its two atoms (in G's frame).
+  Cone cone(PrimitiveId i) const { return restored(cones_[i - atoms_.atoms.size()]); }
+  /// What G stores of cone i (its atoms, axis, radii: read without restoring the cone).
+  const StoredCone& stored_cone(PrimitiveId i) const { return cones_[i - atoms_.atoms.size()]; }
+  /// The two atoms of cone i (a, b as its pair gave them), without restoring it.
+  std::array<int, 2> cone_atoms(PrimitiveId i) const {
+    const StoredCone& k = cones_[i - atoms_.atoms.size()];
+    return {k.a, k.b};
+  }
   const Slab& slab(PrimitiveId i) const { return slabs_[i - first_slab_]; }
   bool is_sphere(PrimitiveId i) const { return i < static_cast<int>(atoms_.atoms.size()); }
   bool is_cone(PrimitiveId i) const { return !is_sphere(i) && i < first_slab_; }
@@ -232,7 +243,7 @@ class TargetShape {
   struct Bvh;
   Frame frame_;
   MedialSurface atoms_;                                   // the balls, in frame_ (no connectivity)
-  std::vector<Cone> cones_;                               // in frame_
+  std::vector<StoredCone> cones_;                         // in frame_
   std::vector<int> cones_by_atom_start_, cones_by_atom_;  // CSR: atom -> its cones' ids
   std::vector<Slab> slabs_;                               // in frame_
   int first_slab_ = 0;                                    // sphere_count + cone_count
@@ -245,13 +256,14 @@ class TargetShape {
 /// G of the atoms: the cones cone_pairs(atoms, cones) chooses (on the atoms as given), the
 /// primitives expressed in `frame` (the garbing passes bounding_cube_frame(atoms); the default,
 /// world coordinates, is what `evaluate atoms` measures in).
+/// Taken by value, as TargetShape's constructors: std::move them in when no longer needed.
 /// @pre atoms valid; cone options as cone_pairs   @throws InvalidInput
-TargetShape make_target_shape(const MedialSurface& atoms, const ConeOptions& cones = {},
+TargetShape make_target_shape(MedialSurface atoms, const ConeOptions& cones = {},
                               const Frame& frame = {});
 
 /// G of the primitive set: for the envelope, envelope_primitives(atoms) (`cones` unused); for
 /// atoms, as above. @throws InvalidInput
-TargetShape make_target_shape(const MedialSurface& atoms, PrimitiveSet primitives,
+TargetShape make_target_shape(MedialSurface atoms, PrimitiveSet primitives,
                               const ConeOptions& cones, const Frame& frame = {});
 
 }  // namespace mg::garbing
