@@ -11,6 +11,11 @@ function(mg_set_warnings target)
   if(MG_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  # And one rule of arithmetic: a * b + c is never fused into one rounding. G restores its
+  # cones by the expressions make_cone uses, inline in other translation units
+  # (garbing/primitives.h), and counts on the same roundings there; with FMA instructions
+  # (-march=native, aarch64) GCC would otherwise fuse where it sees fit.
+  target_compile_options(${target} PRIVATE -ffp-contract=off)
 endfunction()
 
 # mg_add_library(<target> ALIAS <name> SOURCES ... [PUBLIC ...] [PRIVATE ...])

@@ -140,6 +140,7 @@ std::vector<std::array<int, 2>> detail::regular_edges(const MedialSurface& atoms
   }
   rt.reset();
   std::vector<int>().swap(upper);
+  if (parts.size() == 1) return std::move(parts.front());
   std::size_t total = 0;
   for (const auto& part : parts) total += part.size();
   edges.reserve(total);

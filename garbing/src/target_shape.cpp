@@ -77,6 +77,7 @@ TargetShape::TargetShape(MedialSurface atoms, const std::vector<std::array<int, 
       atoms_{std::move(atoms.atoms), {}, {}},
       counts_(counts),
       bvh_(std::make_unique<Bvh>()) {
+  atoms = {};  // the connectivity of the copy given is not G's
   // The world frame copies the centres as they are (a transform by the identity could still
   // change the sign of a zero).
   if (!frame_.is_world())
@@ -280,8 +281,10 @@ bool TargetShape::run_end(const Vec3& origin, const Vec3& dir, double t_max, dou
 
 Vec3 TargetShape::closest_point(const Vec3& p) const {
   if (!contains(p)) {
-    // Outside: the nearest point of any primitive's solid, by branch and bound.
+    // Outside: the nearest point of any primitive's solid, by branch and bound; of equally near
+    // ones, the lowest primitive id's (so that the hierarchy's order does not decide).
     double best = kInf;
+    int best_id = -1;
     Vec3 out = p;
     std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>>
         queue;
@@ -289,7 +292,7 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
     while (!queue.empty()) {
       const auto [d2, id] = queue.top();
       queue.pop();
-      if (d2 >= best) break;
+      if (d2 > best) break;
       const auto& n = bvh_->nodes[id];
       if (n.right >= 0) {
         queue.push({bvh_->nodes[id + 1].box.squared_distance(p), id + 1});
@@ -308,8 +311,9 @@ Vec3 TargetShape::closest_point(const Vec3& p) const {
           q = closest_solid_point(slab(i), p);
         }
         const double e2 = (q - p).squaredNorm();
-        if (e2 < best) {
+        if (e2 < best || (e2 == best && i < best_id)) {
           best = e2;
+          best_id = i;
           out = q;
         }
       }

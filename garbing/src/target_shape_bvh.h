@@ -42,7 +42,7 @@ struct Box {
 
 /// A box as the hierarchy keeps it after the build: floats, each bound rounded outward (never
 /// inside the double box it stands for), so a test against it errs only toward "may meet".
-/// Half the memory of Box (at a million atoms 4.3 million primitives and as many nodes).
+/// Half the memory of Box (at a million atoms, 4.3 million primitives' boxes and their nodes').
 struct StoredBox {
   Eigen::Vector3f lo, hi;
   StoredBox() = default;
@@ -74,8 +74,8 @@ struct StoredBox {
 
 }  // namespace detail
 
-/// A binary bounding-volume hierarchy over the primitives' boxes (median split on the longest
-/// axis of the box centres; up to 4 primitives per leaf).
+/// A binary bounding-volume hierarchy over the primitives' boxes (binned surface-area splits,
+/// the median on the longest axis below depth 48; up to 4 primitives per leaf).
 struct TargetShape::Bvh {
   using Box = detail::Box;
   using StoredBox = detail::StoredBox;

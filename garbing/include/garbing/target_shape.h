@@ -118,9 +118,11 @@ using PrimitiveId = int;
 class TargetShape {
  public:
   /// G of the atoms' balls and the cones of `pairs`, expressed in `frame` (atom centres
-  /// mapped by frame.to_local; world coordinates by default). G keeps the atoms: pass them
-  /// with std::move when the caller no longer needs them (no copy; their connectivity is
-  /// dropped).
+  /// mapped by frame.to_local; world coordinates by default). G keeps the atoms' balls: pass
+  /// them with std::move when the caller no longer needs them (no copy; their connectivity is
+  /// dropped). Then neither `pairs` nor another argument may refer into the moved surface (its
+  /// edges, say), and nothing computed from it may sit in the same call: the parameter may be
+  /// moved into before the other arguments are evaluated (compute the frame first, as garb()).
   /// @pre atoms valid; every pair indexes two intersecting atoms, neither holding the other
   TargetShape(MedialSurface atoms, const std::vector<std::array<int, 2>>& pairs,
               const Frame& frame = {});
