@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
-#include <iterator>
 #include <random>
 
 namespace mg_test {
@@ -61,66 +61,44 @@ inline mg::garbing::Octree octree_of(const mg::MedialSurface& s,
   return mg::garbing::build_octree(shape_of(s, cones), opt);
 }
 
-/// Whether two cones are the same bit for bit, field by field (doubles compared with ==).
+/// A cone's fields, in one order (for same_cone).
+inline std::array<double, 27> cone_fields(const mg::garbing::Cone& k) {
+  return {k.c1.x(),
+          k.c1.y(),
+          k.c1.z(),
+          k.u.x(),
+          k.u.y(),
+          k.u.z(),
+          k.r1,
+          k.length,
+          k.r2,
+          k.sin_phi,
+          k.cos_phi,
+          k.t_lo,
+          k.t_hi,
+          k.rho_lo,
+          k.rho_hi,
+          k.bound_centre.x(),
+          k.bound_centre.y(),
+          k.bound_centre.z(),
+          k.bound_radius2,
+          k.crease.along,
+          k.crease.radius,
+          k.fill_lo[0],
+          k.fill_lo[1],
+          k.fill_hi[0],
+          k.fill_hi[1],
+          k.dr,
+          k.lipschitz};
+}
+
+/// Whether two cones are the same bit for bit, field by field.
 inline ::testing::AssertionResult same_cone(const mg::garbing::Cone& x,
                                             const mg::garbing::Cone& y) {
-  const double xs[] = {x.c1.x(),
-                       x.c1.y(),
-                       x.c1.z(),
-                       x.u.x(),
-                       x.u.y(),
-                       x.u.z(),
-                       x.r1,
-                       x.length,
-                       x.r2,
-                       x.sin_phi,
-                       x.cos_phi,
-                       x.t_lo,
-                       x.t_hi,
-                       x.rho_lo,
-                       x.rho_hi,
-                       x.bound_centre.x(),
-                       x.bound_centre.y(),
-                       x.bound_centre.z(),
-                       x.bound_radius2,
-                       x.crease.along,
-                       x.crease.radius,
-                       x.fill_lo[0],
-                       x.fill_lo[1],
-                       x.fill_hi[0],
-                       x.fill_hi[1],
-                       x.dr,
-                       x.lipschitz};
-  const double ys[] = {y.c1.x(),
-                       y.c1.y(),
-                       y.c1.z(),
-                       y.u.x(),
-                       y.u.y(),
-                       y.u.z(),
-                       y.r1,
-                       y.length,
-                       y.r2,
-                       y.sin_phi,
-                       y.cos_phi,
-                       y.t_lo,
-                       y.t_hi,
-                       y.rho_lo,
-                       y.rho_hi,
-                       y.bound_centre.x(),
-                       y.bound_centre.y(),
-                       y.bound_centre.z(),
-                       y.bound_radius2,
-                       y.crease.along,
-                       y.crease.radius,
-                       y.fill_lo[0],
-                       y.fill_lo[1],
-                       y.fill_hi[0],
-                       y.fill_hi[1],
-                       y.dr,
-                       y.lipschitz};
   if (x.a != y.a || x.b != y.b || x.disjoint != y.disjoint)
     return ::testing::AssertionFailure() << "atoms or disjointness differ";
-  for (std::size_t k = 0; k < std::size(xs); ++k)
+  const auto xs = cone_fields(x), ys = cone_fields(y);
+  for (std::size_t k = 0; k < xs.size(); ++k)
     if (std::memcmp(&xs[k], &ys[k], sizeof(double)) != 0)
       return ::testing::AssertionFailure() << "field " << k << ": " << xs[k] << " vs " << ys[k];
   return ::testing::AssertionSuccess();
