@@ -12,6 +12,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -41,8 +42,7 @@ using Regular =
 /// Hidden atoms (whose power cell is empty) have no vertex and no edge; of atoms whose
 /// weighted points are equal (centre and r^2), only the first (lowest index) is inserted, so which
 /// of them carries the vertex does not depend on the threads' order.
-std::vector<std::array<int, 2>> detail::regular_edges(const MedialSurface& atoms,
-                                                      std::size_t bucket_entries) {
+std::vector<std::array<int, 2>> detail::regular_edges(const MedialSurface& atoms) {
   const std::size_t count = atoms.atoms.size();
   std::vector<int> order(count);
   for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<int>(i);
@@ -87,67 +87,67 @@ std::vector<std::array<int, 2>> detail::regular_edges(const MedialSurface& atoms
     return edges;
   }
   const std::size_t n = atoms.atoms.size();
-  // Each cell lists an edge once per cell around it (about five times): the buckets are filled
-  // for a range of lower atoms at a time, a pass over the cells each, so that they never hold
-  // more than bucket_entries (by default 32 MB; at a million atoms, 39 million entries in all,
-  // five passes: 156 MB at once was the peak of G's construction).
-  std::vector<std::size_t> start(n + 2, 0);
+  // The finite cells' atoms, read in one pass over CGAL's cells (in memory order: random
+  // access to them was the slow part), then the triangulation goes and the edges are gathered
+  // from the flat array in parallel: 16 bytes a cell (104 MB at a million atoms) against the
+  // triangulation's ~120 B. Each cell lists an edge once per cell around it (about five
+  // times): the upper atoms are bucketed by lower atom, then sorted and counted once each.
+  std::vector<std::array<int, 4>> cells;
+  cells.reserve(rt->number_of_cells());  // the infinite ones included: a bound, O(1)
+  for (auto c = rt->finite_cells_begin(); c != rt->finite_cells_end(); ++c)
+    cells.push_back(
+        {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()});
+  rt.reset();
+  // In parallel over the cells: the order in which a bucket fills is the threads', but each
+  // bucket is sorted below, so the edges are the same at any thread count.
   auto each_edge = [&](auto&& f) {
-    for (auto c = rt->finite_cells_begin(); c != rt->finite_cells_end(); ++c) {
-      const int v[4] = {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
-                        c->vertex(3)->info()};
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) f(std::min(v[i], v[j]), std::max(v[i], v[j]));
-    }
-  };
-  each_edge([&](int a, int) { ++start[a + 2]; });
-  for (std::size_t a = 2; a < start.size(); ++a) start[a] += start[a - 1];
-  // start[a + 1]: where atom a's entries begin; each pass moves it to their end (the next
-  // atom's begin), so that start[a] .. start[a + 1] are atom a's once its pass is done.
-  std::vector<int> upper;
-  std::vector<int> distinct;
-  std::vector<std::vector<std::array<int, 2>>> parts;
-  for (std::size_t lo = 0; lo < n;) {
-    std::size_t hi = lo + 1;
-    while (hi < n && start[hi + 2] - start[lo + 1] <= bucket_entries) ++hi;
-    const std::size_t base = start[lo + 1];
-    upper.resize(start[hi + 1] - base);
-    const int first_atom = static_cast<int>(lo), end_atom = static_cast<int>(hi);
-    each_edge([&](int a, int b) {
-      if (a >= first_atom && a < end_atom) upper[start[a + 1]++ - base] = b;
-    });
-    // Per atom, in parallel: its upper neighbours sorted and counted once each, then written.
-    distinct.assign(hi - lo + 1, 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(lo, hi, 4096),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 1 << 14),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t a = r.begin(); a != r.end(); ++a) {
-                          const auto first = upper.begin() + (start[a] - base);
-                          const auto last = upper.begin() + (start[a + 1] - base);
-                          std::sort(first, last);
-                          distinct[a - lo + 1] = static_cast<int>(std::unique(first, last) - first);
+                        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                          const auto& v = cells[c];
+                          for (int i = 0; i < 4; ++i)
+                            for (int j = i + 1; j < 4; ++j)
+                              f(std::min(v[i], v[j]), std::max(v[i], v[j]));
                         }
                       });
-    for (std::size_t a = lo; a < hi; ++a) distinct[a - lo + 1] += distinct[a - lo];
-    std::vector<std::array<int, 2>>& part = parts.emplace_back(distinct[hi - lo]);
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(lo, hi, 4096),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-          for (std::size_t a = r.begin(); a != r.end(); ++a)
-            for (int k = distinct[a - lo]; k < distinct[a - lo + 1]; ++k)
-              part[k] = {static_cast<int>(a), upper[start[a] - base + k - distinct[a - lo]]};
-        });
-    lo = hi;
+  };
+  std::vector<std::size_t> start(n + 1, 0);
+  each_edge([&](int a, int) { __atomic_fetch_add(&start[a + 1], 1, __ATOMIC_RELAXED); });
+  for (std::size_t a = 1; a < start.size(); ++a) start[a] += start[a - 1];
+  std::vector<int> upper(start[n]);
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    each_edge([&](int a, int b) { upper[__atomic_fetch_add(&fill[a], 1, __ATOMIC_RELAXED)] = b; });
   }
-  rt.reset();
-  std::vector<int>().swap(upper);
-  if (parts.size() == 1) return std::move(parts.front());
-  std::size_t total = 0;
-  for (const auto& part : parts) total += part.size();
-  edges.reserve(total);
-  for (auto& part : parts) {
-    edges.insert(edges.end(), part.begin(), part.end());
-    std::vector<std::array<int, 2>>().swap(part);
-  }
+  std::vector<std::array<int, 4>>().swap(cells);
+  // Per atom, in parallel: its upper neighbours sorted and counted once each, then written.
+  std::vector<int> distinct(n + 1, 0);
+  // (Repeats dropped first, by the last atom that saw each upper atom: then only the
+  // distinct ones, a fifth, are sorted.)
+  tbb::enumerable_thread_specific<std::vector<int>> seen(n, -1);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      std::vector<int>& seen_by = seen.local();
+                      for (std::size_t a = r.begin(); a != r.end(); ++a) {
+                        const auto first = upper.begin() + start[a];
+                        auto last = first;
+                        for (auto b = first; b != upper.begin() + start[a + 1]; ++b)
+                          if (seen_by[*b] != static_cast<int>(a)) {
+                            seen_by[*b] = static_cast<int>(a);
+                            *last++ = *b;
+                          }
+                        std::sort(first, last);
+                        distinct[a + 1] = static_cast<int>(last - first);
+                      }
+                    });
+  for (std::size_t a = 0; a < n; ++a) distinct[a + 1] += distinct[a];
+  edges.resize(distinct[n]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t a = r.begin(); a != r.end(); ++a)
+                        for (int k = distinct[a]; k < distinct[a + 1]; ++k)
+                          edges[k] = {static_cast<int>(a), upper[start[a] + k - distinct[a]]};
+                    });
   return edges;
 }
 

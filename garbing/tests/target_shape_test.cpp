@@ -361,18 +361,52 @@ TEST(TargetShape, BoxQueriesFindBallsThatOnlyTouchTheBox) {
   EXPECT_GT(checked, 1500);
 }
 
-TEST(ConePairs, RegularEdgesTheSameWhateverTheBucketSize) {
-  // The triangulation's edges are gathered a range of lower atoms at a time: one atom per pass,
-  // a few, or all at once give the same sorted, distinct edges.
-  mg::MedialSurface s = mg_test::blob(300, 0.2, 0.8, 4);
-  for (std::size_t k = 0; k < 300; k += 11) s.atoms.push_back(s.atoms[k]);  // repeats
-  const auto all = gb::detail::regular_edges(s);
-  ASSERT_GT(all.size(), 600u);
-  EXPECT_TRUE(std::is_sorted(all.begin(), all.end()));
-  EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
-  for (const auto& e : all) EXPECT_LT(e[0], e[1]);
-  for (std::size_t bucket : {std::size_t(1), std::size_t(7), std::size_t(97), std::size_t(2000)})
-    EXPECT_EQ(gb::detail::regular_edges(s, bucket), all) << "bucket " << bucket;
+TEST(ConePairs, RegularEdgesAreThoseOfTheTetrahedraWithAnEmptyOrthogonalSphere) {
+  // The definition, by brute force: four weighted points span a cell of the regular
+  // triangulation when the sphere orthogonal to all four has every other point outside it
+  // (power product > 0). In general position, with hidden points (small balls inside others)
+  // and a repeated atom (the lower index takes part).
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(0, 1), radius(0.05, 0.4);
+  mg::MedialSurface s;
+  for (int k = 0; k < 28; ++k) s.atoms.push_back({Vector3d(u(gen), u(gen), u(gen)), radius(gen)});
+  s.atoms.push_back({s.atoms[3].centre, 0.01});  // hidden in ball 3
+  s.atoms.push_back(s.atoms[7]);                 // a repeat of atom 7
+  const int n = static_cast<int>(s.atoms.size());
+  auto weight = [&](int i) { return s.atoms[i].radius * s.atoms[i].radius; };
+  std::vector<std::array<int, 2>> expected;
+  int cells = 0;
+  for (int a = 0; a < n - 1; ++a)  // the repeat (last) never spans a cell of its own
+    for (int b = a + 1; b < n - 1; ++b)
+      for (int c = b + 1; c < n - 1; ++c)
+        for (int d = c + 1; d < n - 1; ++d) {
+          const int v[4] = {a, b, c, d};
+          // The orthogonal sphere's centre z: |z - c_i|^2 - w_i equal for the four.
+          Eigen::Matrix3d m;
+          Vector3d rhs;
+          const Vector3d& c0 = s.atoms[a].centre;
+          for (int k = 1; k < 4; ++k) {
+            const Vector3d& ck = s.atoms[v[k]].centre;
+            m.row(k - 1) = 2 * (ck - c0).transpose();
+            rhs[k - 1] = ck.squaredNorm() - c0.squaredNorm() - weight(v[k]) + weight(a);
+          }
+          const Vector3d z = m.partialPivLu().solve(rhs);
+          const double wz = (z - c0).squaredNorm() - weight(a);
+          bool empty = true;
+          for (int q = 0; q < n - 1 && empty; ++q)
+            if (q != a && q != b && q != c && q != d)
+              empty = (z - s.atoms[q].centre).squaredNorm() - weight(q) - wz > 1e-9;
+          if (!empty) continue;
+          ++cells;
+          for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) expected.push_back({v[i], v[j]});
+        }
+  std::sort(expected.begin(), expected.end());
+  expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+  ASSERT_GT(cells, 40);
+  const auto edges = gb::detail::regular_edges(s);
+  EXPECT_EQ(edges, expected);
+  for (const auto& e : edges) EXPECT_NE(e[0], 28) << "the hidden atom has an edge";
 }
 
 }  // namespace

@@ -5,20 +5,14 @@
 #include "core/medial_surface.h"
 
 #include <array>
-#include <cstddef>
 #include <vector>
 
 namespace mg::garbing::detail {
 
-/// The default of regular_edges' bucket_entries: 2^23 entries (32 MB).
-constexpr std::size_t kRegularEdgeBucket = std::size_t(1) << 23;
-
 /// Edges of the regular triangulation of the atoms (weights r^2), as pairs (i < j), sorted,
 /// each once. Hidden atoms have no edge; of atoms with equal weighted points only the lowest
-/// index takes part. The cells' edges are gathered by ranges of lower atoms holding at most
-/// `bucket_entries` entries at a time (a pass over the cells per range; at least one atom per
-/// range): the result does not depend on it. @pre atoms valid, bucket_entries >= 1
-std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms,
-                                              std::size_t bucket_entries = kRegularEdgeBucket);
+/// index takes part. Built and read in parallel; the same edges at any thread count.
+/// @pre atoms valid
+std::vector<std::array<int, 2>> regular_edges(const MedialSurface& atoms);
 
 }  // namespace mg::garbing::detail
