@@ -97,6 +97,9 @@ Locale point_locale(const Context& ctx, const Vec3& p);
 
 /// Moves v along m(v) onto G (see refine_mesh.h); `out` is where it lands.
 Outcome migrate(const Context& ctx, const Vec3& v, const Locale& locale, Vec3& out);
+/// The same with P of the locale given (primitives_of).
+Outcome migrate(const Context& ctx, const Vec3& v, const Locale& locale,
+                const std::vector<PrimitiveId>& prims, Vec3& out);
 
 /// Migrates the vertices [first, end) from their start into `position` (in parallel).
 void migrate_range(const Context& ctx, Vertices& m2, std::size_t first, RefineStats& stats);
