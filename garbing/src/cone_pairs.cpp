@@ -12,7 +12,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -120,24 +119,25 @@ std::vector<std::array<int, 2>> detail::regular_edges(const MedialSurface& atoms
     each_edge([&](int a, int b) { upper[__atomic_fetch_add(&fill[a], 1, __ATOMIC_RELAXED)] = b; });
   }
   std::vector<std::array<int, 4>>().swap(cells);
-  // Per atom, in parallel: its upper neighbours sorted and counted once each, then written.
-  std::vector<int> distinct(n + 1, 0);
-  // (Repeats dropped first, by the last atom that saw each upper atom: then only the
-  // distinct ones, a fifth, are sorted.)
-  tbb::enumerable_thread_specific<std::vector<int>> seen(n, -1);
+  // Per atom, in parallel: its upper neighbours counted once each and sorted, then written. A
+  // bucket holds about 39 entries for 8 distinct atoms: the repeats go by a scan of those kept
+  // so far (no memory per thread), a long bucket (a large ball's) by sort and unique.
+  std::vector<std::size_t> distinct(n + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
-                      std::vector<int>& seen_by = seen.local();
                       for (std::size_t a = r.begin(); a != r.end(); ++a) {
-                        const auto first = upper.begin() + start[a];
+                        const auto first = upper.begin() + static_cast<long>(start[a]);
+                        const auto end = upper.begin() + static_cast<long>(start[a + 1]);
                         auto last = first;
-                        for (auto b = first; b != upper.begin() + start[a + 1]; ++b)
-                          if (seen_by[*b] != static_cast<int>(a)) {
-                            seen_by[*b] = static_cast<int>(a);
-                            *last++ = *b;
-                          }
-                        std::sort(first, last);
-                        distinct[a + 1] = static_cast<int>(last - first);
+                        if (end - first <= 256) {
+                          for (auto b = first; b != end; ++b)
+                            if (std::find(first, last, *b) == last) *last++ = *b;
+                          std::sort(first, last);
+                        } else {
+                          std::sort(first, end);
+                          last = std::unique(first, end);
+                        }
+                        distinct[a + 1] = static_cast<std::size_t>(last - first);
                       }
                     });
   for (std::size_t a = 0; a < n; ++a) distinct[a + 1] += distinct[a];
@@ -145,7 +145,7 @@ std::vector<std::array<int, 2>> detail::regular_edges(const MedialSurface& atoms
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t a = r.begin(); a != r.end(); ++a)
-                        for (int k = distinct[a]; k < distinct[a + 1]; ++k)
+                        for (std::size_t k = distinct[a]; k < distinct[a + 1]; ++k)
                           edges[k] = {static_cast<int>(a), upper[start[a] + k - distinct[a]]};
                     });
   return edges;

@@ -276,14 +276,16 @@ void migrate_range(const Context& ctx, Vertices& m2, std::size_t first, RefineSt
   std::vector<Outcome> outcome(n - first);
   // Runs of vertices with the same leaf's P (the dual's vertices come in M1's face order,
   // leaf by leaf: 1.7 per leaf on the bumpy torus): gathered once per run.
+  // A vertex joins the run before it when both take P from the same leaf alone.
+  auto leaf_only = [&](std::size_t i) { return !m2.locale[i].prims && m2.locale[i].leaf >= 0; };
   std::vector<std::size_t> runs;
   for (std::size_t i = first; i < n; ++i)
-    if (i == first || m2.locale[i].prims || m2.locale[i].leaf < 0 ||
+    if (i == first || !leaf_only(i) || !leaf_only(i - 1) ||
         m2.locale[i].leaf != m2.locale[i - 1].leaf)
       runs.push_back(i);
   runs.push_back(n);
   tbb::parallel_for(std::size_t(0), runs.size() - 1, [&](std::size_t r) {
-    std::vector<PrimitiveId> scratch;
+    thread_local std::vector<PrimitiveId> scratch;  // cleared by primitives_of
     const std::vector<PrimitiveId>& prims = primitives_of(ctx, m2.locale[runs[r]], scratch);
     for (std::size_t i = runs[r]; i < runs[r + 1]; ++i)
       outcome[i - first] = migrate(ctx, m2.start[i], m2.locale[i], prims, m2.position[i]);
