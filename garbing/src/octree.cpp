@@ -489,9 +489,10 @@ class OctreeBuilder {
       to_split.push_back(c);
     }
     // Children's sphere lists, filtered from the parent's, in parallel. Only leaves' lists are
-    // read from now on: each parent's go as soon as its children hold theirs.
+    // read from now on: each parent's go as soon as its children hold theirs. One parent per
+    // task at the least: the first rounds split a few cells with most of the atoms each.
     std::vector<std::array<OctreeCell, 8>> children(to_split.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, to_split.size(), 16),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, to_split.size(), 1),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t i = r.begin(); i != r.end(); ++i) {
                           make_children(to_split[i], children[i]);
@@ -709,13 +710,25 @@ class OctreeBuilder {
   /// r_k^2), from the affine difference's worst corner: where it exceeds the margin, ball w
   /// holds every point of B_i in the cube.
   double power_gap(int i, int w, const Vec3& clo, double side) const {
-    const Vec3& c = g_.sphere(i).centre;
-    const double r = g_.sphere(i).radius;
-    const Vec3& cw = g_.sphere(w).centre;
-    const double rw = g_.sphere(w).radius;
-    double d = cw.squaredNorm() - rw * rw - c.squaredNorm() + r * r;
+    return power_gap(PowerTerms(g_.sphere(i)), PowerTerms(g_.sphere(w)), clo, side);
+  }
+
+  /// A ball's centre with the two terms of its power's constant part, |c|^2 and r^2: computed
+  /// once per ball when it is tested against several witnesses.
+  struct PowerTerms {
+    Vec3 c;
+    double norm2, r2;
+    explicit PowerTerms(const MedialAtom& s)
+        : c(s.centre), norm2(s.centre.squaredNorm()), r2(s.radius * s.radius) {}
+  };
+
+  /// power_gap from the balls' terms: (|c_w|^2 - r_w^2 - |c_i|^2 + r_i^2) plus the worst
+  /// corner's slope terms, in that order.
+  static double power_gap(const PowerTerms& i, const PowerTerms& w, const Vec3& clo,
+                          double side) {
+    double d = w.norm2 - w.r2 - i.norm2 + i.r2;
     for (int a = 0; a < 3; ++a) {
-      const double slope = 2 * (c[a] - cw[a]);
+      const double slope = 2 * (i.c[a] - w.c[a]);
       d += slope * (slope > 0 ? clo[a] + side : clo[a]);
     }
     return -d;
@@ -772,12 +785,8 @@ class OctreeBuilder {
     auto power = [&](int i, const Vec3& q) {
       return (q - g_.sphere(i).centre).squaredNorm() - g_.sphere(i).radius * g_.sphere(i).radius;
     };
-    // w covers i in the cube when pow_i - pow_w exceeds the margin on all of it (power_gap).
     double gap = 0;  // of the last ball tested, against its witness
-    auto dominates = [&](int w, int i, const Vec3& clo) {
-      gap = power_gap(i, w, clo, side);
-      return gap > margin_;
-    };
+    thread_local std::vector<PowerTerms> witness_terms;  // of witnesses[tested ..]
     // Per atom of the parent's list, the children where it is still kept (0 for the others).
     thread_local std::vector<std::uint8_t> kept;
     const bool cones = !cone_other_.empty();
@@ -861,12 +870,19 @@ class OctreeBuilder {
           if (std::find(witnesses.begin(), witnesses.end(), best[sample]) == witnesses.end())
             witnesses.push_back(best[sample]);
         if (witnesses.size() == tested) continue;
+        witness_terms.clear();
+        for (std::size_t by = tested; by < witnesses.size(); ++by)
+          witness_terms.emplace_back(g_.sphere(witnesses[by]));
         auto kept_entry = listed.begin();
         for (std::size_t x : listed) {
           const int i = parent.spheres[x];
           if (std::find(witnesses.begin(), witnesses.end(), i) == witnesses.end()) {
+            // w covers i in the cube when pow_i - pow_w exceeds the margin on all of it.
+            const PowerTerms terms(g_.sphere(i));
             std::size_t by = tested;
-            while (by < witnesses.size() && !dominates(witnesses[by], i, clo)) ++by;
+            while (by < witnesses.size() &&
+                   !((gap = power_gap(terms, witness_terms[by - tested], clo, side)) > margin_))
+              ++by;
             if (by < witnesses.size() &&
                 (!cones || cones_covered(i, gap, bit, witnesses[by], clo))) {
               masks[x] = static_cast<std::uint8_t>(masks[x] & ~bit);
