@@ -724,8 +724,7 @@ class OctreeBuilder {
 
   /// power_gap from the balls' terms: (|c_w|^2 - r_w^2 - |c_i|^2 + r_i^2) plus the worst
   /// corner's slope terms, in that order.
-  static double power_gap(const PowerTerms& i, const PowerTerms& w, const Vec3& clo,
-                          double side) {
+  static double power_gap(const PowerTerms& i, const PowerTerms& w, const Vec3& clo, double side) {
     double d = w.norm2 - w.r2 - i.norm2 + i.r2;
     for (int a = 0; a < 3; ++a) {
       const double slope = 2 * (i.c[a] - w.c[a]);
