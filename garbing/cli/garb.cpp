@@ -2,7 +2,8 @@
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
 //        [--no-criterion N ...] [--primitives auto|ma|rt]
 //        [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C]
-//        [--spheres-only] [--refine K] [--no-dual] [--max-travel T] [--repair-rounds N]
+//        [--spheres-only] [--tolerance F] [--refine K] [--no-dual] [--max-travel T]
+//        [--repair-rounds N]
 //        [--max-gap F] [--check-topology] [--stats FILE.json] [--threads N]
 #include "garbing/garb.h"
 #include "core/cli_main.h"
@@ -151,6 +152,12 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
 
   Json j = {{"input", input}, {"atoms", atoms.atoms.size()}};
   j.update(octree_json(r.tree, criteria_off, opt.octree.prune_lists && !r.g.is_envelope()));
+  if (opt.tolerance > 0)
+    j["thinning"] = {{"tolerance_leaf_sides", opt.tolerance},
+                     {"slack", r.thinning.slack},
+                     {"atoms_kept", r.thinning.kept},
+                     {"atoms_dropped", r.thinning.dropped},
+                     {"seconds", r.thinning.seconds}};
   j["boundary_leaves"] = owners.size();
   j["m1"] = m1;
   j["m2"] = m2;
@@ -216,6 +223,11 @@ int garb_main(int argc, char** argv) {
                  "keep a cone if it stands off its spheres' crease by <= C * rc / 8 (0: no limit)")
       ->check(mg::NonNegative);
   app.add_flag("--spheres-only", spheres_only, "no cones: G is the union of the spheres");
+  app.add_option("--tolerance", opt.tolerance,
+                 "thin dense atoms first: leave out each ball that a nearby kept ball contains "
+                 "up to F leaf sides at depth d (the union of the balls moves by at most that); "
+                 "0: every atom")
+      ->check(mg::NonNegative);
   app.add_option("--refine", opt.refine.subdivisions, "rounds of 1-to-4 subdivision + migration")
       ->check(mg::NonNegative);
   app.add_flag("--no-dual", no_dual, "migrate M1 itself, triangulated (ablation)");
@@ -275,6 +287,10 @@ int garb_main(int argc, char** argv) {
                                " has radius 0: the balls alone (--primitives rt) need radii > 0; "
                                "only a medial mesh's envelope (edges or faces) takes them");
   const bool envelope = gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::envelope;
+  if (opt.tolerance > 0 && envelope)
+    throw mg::InvalidInput(input +
+                           ": --tolerance thins the atoms' balls: a medial mesh's envelope is "
+                           "garbed exactly (use --primitives rt to garb its atoms)");
   if (check_topology && envelope)
     throw mg::InvalidInput(input +
                            ": --check-topology compares with the union of the balls: a medial "

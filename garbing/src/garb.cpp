@@ -1,7 +1,10 @@
 #include "garbing/garb.h"
 
+#include "core/errors.h"
 #include "core/timer.h"
 
+#include <cmath>
+#include <string>
 #include <utility>
 
 namespace mg::garbing {
@@ -14,19 +17,47 @@ Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
   // and slabs), in the frame of the octree.
   // Checked on the atoms as given, so that a message names the caller's index of an atom.
   validate(atoms);
-  if (resolve(opt.primitives, atoms) == PrimitiveSet::atoms) require_positive_radii(atoms);
+  const bool of_atoms = resolve(opt.primitives, atoms) == PrimitiveSet::atoms;
+  if (of_atoms) require_positive_radii(atoms);
+  if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance))
+    throw InvalidInput("the tolerance must be finite and >= 0, got " +
+                       std::to_string(opt.tolerance));
+  if (opt.tolerance > 0 && !of_atoms)
+    throw InvalidInput(
+        "the tolerance thins the atoms' balls (--primitives rt): a medial mesh's envelope is "
+        "garbed exactly");
+  if (opt.tolerance > 0 && opt.cones.source == ConeSource::ma_edges)
+    throw InvalidInput(
+        "the tolerance thins the atoms' balls: the cones of the file's edges "
+        "(--cones edges) would lose their atoms");
+  OctreeOptions octree = opt.octree;
+  ThinStats thinning;
   // The atoms in Z-order first: a cell's balls, the octree's lists and the migration's sums
   // then read nearby memory (at a million atoms in an arbitrary order, 1.7x as fast), and the
   // same atoms in any order give the same mesh.
   TargetShape g = [&] {
     MedialSurface sorted = spatially_sorted(atoms);
     const Frame frame = bounding_cube_frame(sorted);
+    if (opt.tolerance > 0) {
+      // The given atoms' resolution: their d, in their frame, whatever the thinning leaves.
+      if (octree.min_depth == 0)
+        octree.min_depth = automatic_min_depth(frame.cube_side, characteristic_radius(sorted));
+      if (octree.min_depth > octree.max_depth)
+        throw InvalidInput("automatic minimal depth d = " + std::to_string(octree.min_depth) +
+                           " exceeds the maximal depth " + std::to_string(octree.max_depth) +
+                           " (raise --max-depth or set --min-depth)");
+      const double slack = opt.tolerance * std::ldexp(frame.cube_side, -octree.min_depth);
+      // G of the balls and their own cones: the file's edges and faces are not read.
+      MedialSurface balls;
+      balls.atoms = std::move(sorted.atoms);
+      sorted = thin_atoms(balls, slack, &thinning);
+    }
     return make_target_shape(std::move(sorted), opt.primitives, opt.cones, frame);
   }();
   seconds.target_shape = clock.restart();
   peak.target_shape = peak_memory_mb();
   // Step 1: the adaptive octree wrapping G.
-  Octree tree = build_octree(g, opt.octree);
+  Octree tree = build_octree(g, octree);
   seconds.octree = clock.restart();
   peak.octree = peak_memory_mb();
   // Step 2: M1, the boundary of the active leaves.
@@ -37,7 +68,7 @@ Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
   RefinedMesh m2 = refine_mesh(m1, tree, g, opt.refine);
   seconds.m2 = clock.restart();
   peak.m2 = peak_memory_mb();
-  return {std::move(g), std::move(tree), std::move(m1), std::move(m2), seconds, peak};
+  return {std::move(g), std::move(tree), std::move(m1), std::move(m2), seconds, peak, thinning};
 }
 
 }  // namespace mg::garbing

@@ -48,8 +48,7 @@ class OctreeBuilder {
     if (opt_.min_depth > 0) {
       tree_.min_depth = opt_.min_depth;
     } else {
-      int d = 0;
-      while (tree_.side(d) > tree_.rc / 8) ++d;
+      const int d = automatic_min_depth(tree_.root_side, tree_.rc);
       if (d > opt_.max_depth)
         throw InvalidInput("automatic minimal depth d = " + std::to_string(d) +
                            " exceeds the maximal depth " + std::to_string(opt_.max_depth) +
@@ -964,6 +963,12 @@ class OctreeBuilder {
 };
 
 }  // namespace
+
+int automatic_min_depth(double root_side, double rc) {
+  int d = 0;
+  while (std::ldexp(root_side, -d) > rc / 8) ++d;  // Octree::side(d)
+  return d;
+}
 
 Octree build_octree(const TargetShape& g, const OctreeOptions& opt) {
   if (!(g.frame().cube_side > 0))

@@ -124,6 +124,39 @@ class GarbCli(U.CliTestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
 
+    def test_tolerance_thins_dense_atoms_at_the_same_depth(self):
+        # Two interleaved rows of nearly equal balls: each ball of the second row lies in its
+        # neighbour of the first up to a small slack.
+        rows = "".join("%r 0 0 0.4\n%r 0.001 0 0.399\n" % (0.01 * k, 0.01 * k + 0.001) for k in range(100))
+        ma = self.write("rows.ma", rows)
+        for name, extra in (("exact", ()), ("thin", ("--tolerance", "0.25")),
+                            ("thin1", ("--tolerance", "0.25", "--threads", "1"))):
+            r = run(ma, "-o", self.path(name + ".off"), "--stats", self.path(name + ".json"), *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+        exact, thin = (json.load(open(self.path(n + ".json"))) for n in ("exact", "thin"))
+        self.assertNotIn("thinning", exact)
+        t = thin["thinning"]
+        self.assertEqual(t["tolerance_leaf_sides"], 0.25)
+        self.assertEqual(t["atoms_kept"] + t["atoms_dropped"], 200)
+        self.assertLessEqual(t["atoms_kept"], 100)
+        self.assertEqual(thin["atoms"], 200)  # the input's count
+        self.assertEqual(thin["min_depth"], exact["min_depth"])
+        self.assertAlmostEqual(t["slack"], 0.25 * exact["root_side"] / 2 ** exact["min_depth"], places=12)
+        self.assertTrue(thin["m2"]["closed"])
+        self.assertEqual(thin["m2"]["genus"], 0)
+        self.assertEqual(open(self.path("thin.off"), "rb").read(), open(self.path("thin1.off"), "rb").read())
+
+    def test_tolerance_refuses_an_envelope_and_a_negative_value(self):
+        ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
+        r = run(ma, "-o", self.path("m.off"), "--tolerance", "0.1")
+        self.assert_refused(r, 2, "capsule.ma: --tolerance thins the atoms' balls", [self.path("m.off")])
+        r = run(ma, "-o", self.path("m.off"), "--tolerance", "0.1", "--primitives", "rt")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = run(ma, "-o", self.path("e.off"), "--tolerance", "0.1", "--cones", "edges")
+        self.assert_refused(r, 2, "--cones edges", [self.path("e.off")])
+        r = run(self.ma, "-o", self.path("n.off"), "--tolerance", "-1")
+        self.assert_refused(r, 2, "--tolerance: must be >= 0, not -1", [self.path("n.off")])
+
     def test_check_topology_refuses_an_envelope(self):
         ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")
         self.assert_refused(run(ma, "-o", self.path("m.off"), "--check-topology"), 2,

@@ -86,6 +86,16 @@ class Garbing(unittest.TestCase):
         v4, f4, s4 = garbing.garb(centres, radii, min_depth=4)
         np.testing.assert_array_equal(v4, read_off(self.path("ring4.off"))[0])
         self.assertEqual(s4["min_depth"], 4)
+        # --tolerance: the same thinned mesh, with its count of kept atoms.
+        run("garb", ma, "-o", self.path("ringt.off"), "--tolerance", 1, "--min-depth", 4)
+        vt, ft, st = garbing.garb(centres, radii, min_depth=4, tolerance=1.0)
+        np.testing.assert_array_equal(vt, read_off(self.path("ringt.off"))[0])
+        np.testing.assert_array_equal(ft, read_off(self.path("ringt.off"))[1])
+        self.assertEqual(st["thinning"]["atoms_kept"] + st["thinning"]["atoms_dropped"], len(radii))
+        self.assertGreater(st["thinning"]["atoms_dropped"], 0)
+        self.assertNotIn("thinning", s4)
+        with self.assertRaisesRegex(ValueError, "tolerance must be finite and >= 0"):
+            garbing.garb(centres, radii, tolerance=-1)
 
     def write_slab(self):
         ma = self.path("slab.ma")

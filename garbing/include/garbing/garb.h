@@ -8,6 +8,7 @@
 #include "garbing/octree.h"
 #include "garbing/refine_mesh.h"
 #include "garbing/target_shape.h"
+#include "garbing/thin_atoms.h"
 
 namespace mg::garbing {
 
@@ -18,6 +19,12 @@ struct GarbOptions {
   RefineOptions refine;  ///< step 3
   /// Which primitives G has: a medial mesh's envelope, or the atoms' balls and cones.
   PrimitiveSet primitives = PrimitiveSet::automatic;
+  /// Thinning of dense atoms (thin_atoms.h), in leaf sides at the minimal depth d: before G is
+  /// built, every ball that a nearby kept ball contains up to tolerance * side(d) is left out
+  /// (the union of the balls moves by at most that much), and d stays the given atoms' (the
+  /// output's resolution does not change). 0: every atom, G exact. Atoms' G only (not an
+  /// envelope). @pre >= 0 and finite
+  double tolerance = 0;
 };
 
 /// Wall-clock seconds of each stage.
@@ -42,16 +49,21 @@ struct Garbing {
   RefinedMesh m2;  ///< step 3, world coordinates, with its statistics
   GarbSeconds seconds;
   GarbMemory peak_mb;
+  ThinStats thinning;  ///< opt.tolerance > 0 only (its seconds are part of seconds.target_shape)
 };
 
 /// Garbs the atoms: with S = spatially_sorted(atoms), G = make_target_shape(S, opt.primitives,
 /// opt.cones, bounding_cube_frame(S)), then
-/// T = build_octree(G), M1 = extract_coarse_mesh(T), M2 = refine_mesh(M1, T, G). The result
+/// T = build_octree(G), M1 = extract_coarse_mesh(T), M2 = refine_mesh(M1, T, G). With
+/// opt.tolerance > 0, G is built from thin_atoms(S, tolerance * side(d)) in the same frame, d
+/// the minimal depth of S (opt.octree.min_depth, or automatic_min_depth of S's frame and rc),
+/// and the octree is given that d (S's edges and faces, unused by G then, are left out). The result
 /// is the same at any thread count and for the atoms in any order (atoms with equal centre and
 /// radius but different edges or faces aside).
 /// @pre options as each stage documents
 /// @throws InvalidInput if the atoms are invalid (validate(); messages name the caller's
-///         indices) or the stages refuse them
+///         indices) or the stages refuse them, or opt.tolerance is negative, not finite, or
+///         given for an envelope or with the cones of the file's edges
 Garbing garb(const MedialSurface& atoms, const GarbOptions& opt = {});
 
 }  // namespace mg::garbing

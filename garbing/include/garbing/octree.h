@@ -99,6 +99,10 @@ struct Octree {
   Eigen::Vector3d to_world(const Eigen::Vector3d& local) const { return frame.to_world(local); }
 };
 
+/// The automatic minimal depth d (OctreeOptions::min_depth 0): the first level whose cube side
+/// root_side / 2^d is <= rc / 8. @pre root_side > 0, rc > 0, both finite
+int automatic_min_depth(double root_side, double rc);
+
 /// Step 1: builds T wrapping G. A cell is active when it meets a ball, the solid of a cone
 /// (the convex hull of its two balls) or the prism of a slab (so, the hull of its three balls);
 /// criteria 1 and 3 see the
