@@ -79,8 +79,8 @@ def size_row(R, size, progress):
     row.update({"full_balls_per_leaf": f["listed_per_active_leaf"]["balls_mean"],
                 "full_garbing_s": f["seconds"]["garbing"], "full_octree_s": f["seconds"]["octree"],
                 "full_m2_s": f["seconds"]["m2"], "full_peak_mb": f["peak_memory_mb"]})
-    # Distances to the generated mesh (the object the atoms describe): Metro sampling with at
-    # least twice the mesh's vertices per side.
+    # Distances to the generated mesh (the object the atoms describe): Metro sampling, at least
+    # twice as many samples per side as either mesh has vertices (evaluate's minimum).
     samples = max(1000000, 3 * ring * tube)
 
     def distance(m2, label):

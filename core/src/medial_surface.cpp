@@ -240,6 +240,10 @@ std::uint64_t spread_bits(std::uint64_t v) {
 
 }  // namespace
 
+std::uint64_t morton_code(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+  return spread_bits(x) | spread_bits(y) << 1 | spread_bits(z) << 2;
+}
+
 MedialSurface spatially_sorted(const MedialSurface& s, std::vector<int>* old_index) {
   const std::size_t n = s.atoms.size();
   Eigen::AlignedBox3d box;
@@ -248,14 +252,13 @@ MedialSurface spatially_sorted(const MedialSurface& s, std::vector<int>* old_ind
   const double steps = 2097152;  // 2^21
   std::vector<std::pair<std::uint64_t, int>> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t key = 0;
+    std::uint64_t q[3];
     for (int axis = 0; axis < 3; ++axis) {
       // In [0, steps): NaN (an extent that overflows to infinity) goes to 0.
       const double x = (s.atoms[i].centre[axis] - box.min()[axis]) / extent * steps;
-      const auto q = static_cast<std::uint64_t>(x > 0 ? std::min(x, steps - 1) : 0.0);
-      key |= spread_bits(q) << axis;
+      q[axis] = static_cast<std::uint64_t>(x > 0 ? std::min(x, steps - 1) : 0.0);
     }
-    keys[i] = {key, static_cast<int>(i)};
+    keys[i] = {morton_code(q[0], q[1], q[2]), static_cast<int>(i)};
   }
   std::sort(keys.begin(), keys.end(), [&](const auto& x, const auto& y) {
     if (x.first != y.first) return x.first < y.first;

@@ -276,6 +276,15 @@ TEST(MedialSurface, RoundTripWithZeroRadiiAndDroppedFlagsIsExact) {
   EXPECT_EQ(twice.str(), once.str());
 }
 
+TEST(MedialSurface, MortonCodeInterleavesTwentyOneBitsPerAxis) {
+  EXPECT_EQ(mg::morton_code(1, 0, 0), 1u);
+  EXPECT_EQ(mg::morton_code(0, 1, 0), 2u);
+  EXPECT_EQ(mg::morton_code(0, 0, 1), 4u);
+  EXPECT_EQ(mg::morton_code(3, 0, 0), 9u);  // bits 0 and 3
+  EXPECT_EQ(mg::morton_code(0x1FFFFF, 0x1FFFFF, 0x1FFFFF), (std::uint64_t(1) << 63) - 1);
+  EXPECT_EQ(mg::morton_code(std::uint64_t(1) << 21, 0, 0), 0u);  // bits above 21 ignored
+}
+
 TEST(MedialSurface, SpatiallySortedIsZOrderWithConnectivityRenumbered) {
   // The eight corners of a cube, listed backwards, and a copy of corner (1, 1, 0) with another
   // radius: Z-order puts x in the lowest bit, then y, then z; equal centres go by radius.

@@ -291,6 +291,10 @@ int garb_main(int argc, char** argv) {
     throw mg::InvalidInput(input +
                            ": --tolerance thins the atoms' balls: a medial mesh's envelope is "
                            "garbed exactly (use --primitives rt to garb its atoms)");
+  if (opt.tolerance > 0 && opt.cones.source == gb::ConeSource::ma_edges)
+    throw mg::InvalidInput(input +
+                           ": --tolerance thins the atoms' balls: the cones of the file's edges "
+                           "(--cones edges) would lose their atoms");
   if (check_topology && envelope)
     throw mg::InvalidInput(input +
                            ": --check-topology compares with the union of the balls: a medial "

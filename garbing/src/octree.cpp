@@ -965,20 +965,26 @@ class OctreeBuilder {
 }  // namespace
 
 int automatic_min_depth(double root_side, double rc) {
+  if (!std::isfinite(root_side))
+    throw InvalidInput("the atoms' bounding cube has an infinite side: coordinates too large");
   int d = 0;
   while (std::ldexp(root_side, -d) > rc / 8) ++d;  // Octree::side(d)
   return d;
+}
+
+void check_octree_options(const OctreeOptions& opt) {
+  if (opt.max_depth < 1 || opt.max_depth > 20)
+    throw InvalidInput("max depth " + std::to_string(opt.max_depth) + " must be in [1, 20]");
+  if (opt.min_depth < 0 || opt.min_depth > opt.max_depth)
+    throw InvalidInput("min depth " + std::to_string(opt.min_depth) + " must be in [0, max depth " +
+                       std::to_string(opt.max_depth) + "]");
 }
 
 Octree build_octree(const TargetShape& g, const OctreeOptions& opt) {
   if (!(g.frame().cube_side > 0))
     throw InvalidInput(
         "build_octree: G must be built in its atoms' bounding cube frame (bounding_cube_frame)");
-  if (opt.max_depth < 1 || opt.max_depth > 20)
-    throw InvalidInput("max depth " + std::to_string(opt.max_depth) + " must be in [1, 20]");
-  if (opt.min_depth < 0 || opt.min_depth > opt.max_depth)
-    throw InvalidInput("min depth " + std::to_string(opt.min_depth) + " must be in [0, max depth " +
-                       std::to_string(opt.max_depth) + "]");
+  check_octree_options(opt);
   return OctreeBuilder(g, opt).run();
 }
 

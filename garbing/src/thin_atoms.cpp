@@ -3,6 +3,7 @@
 #include "garbing/thin_atoms.h"
 
 #include "core/errors.h"
+#include "core/medial_surface.h"
 #include "core/timer.h"
 
 #include <tbb/parallel_for.h>
@@ -19,17 +20,6 @@ namespace mg::garbing {
 namespace {
 
 using Cell = std::array<std::int64_t, 3>;
-
-/// Spreads the low 21 bits of v to every third bit (Morton code).
-std::uint64_t spread(std::uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
 
 /// Open addressing from a grid cell to the last kept ball in it (the others follow through
 /// `next`); a cell is identified by the cell of its first ball.
@@ -86,20 +76,21 @@ MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* st
   std::vector<char> kept(n, 1);
   if (slack > 0 && n > 1) {
     // Grid of side h = 8 slack: the centres within 4 slack of a point lie in the 2 x 2 x 2
-    // cells nearest to it. Coarser where the atoms span more than 2^40 cells (the search only
-    // reaches farther; every test is exact).
+    // cells nearest to it (up to the rounding of their cell coordinates). Coarser where the
+    // atoms span more than 2^24 cells, so that the blocks' Morton codes (21 bits of cell / 8)
+    // do not wrap: the search then only reaches farther, and the containment test decides.
     Eigen::AlignedBox3d box;
     for (const MedialAtom& b : a) box.extend(b.centre);
-    const double h = std::max(8 * slack, box.sizes().maxCoeff() * 0x1p-40);
+    const double h = std::max(8 * slack, box.sizes().maxCoeff() * 0x1p-24);
     std::vector<Cell> cell_of(n);
     std::vector<std::uint64_t> block_key(n);
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
       const Eigen::Vector3d q = (a[i].centre - box.min()) / h;
       for (int k = 0; k < 3; ++k) cell_of[i][k] = static_cast<std::int64_t>(std::floor(q[k]));
       // Blocks of 8 x 8 x 8 cells in Morton order: the greedy pass reads one region at a time.
-      block_key[i] = spread(static_cast<std::uint64_t>(cell_of[i][0] >> 3)) |
-                     spread(static_cast<std::uint64_t>(cell_of[i][1] >> 3)) << 1 |
-                     spread(static_cast<std::uint64_t>(cell_of[i][2] >> 3)) << 2;
+      block_key[i] = morton_code(static_cast<std::uint64_t>(cell_of[i][0] >> 3),
+                                 static_cast<std::uint64_t>(cell_of[i][1] >> 3),
+                                 static_cast<std::uint64_t>(cell_of[i][2] >> 3));
     });
     // The order: block, then decreasing radius, then index (a strict total order).
     std::vector<int> order(n);

@@ -153,9 +153,17 @@ class GarbCli(U.CliTestCase):
         r = run(ma, "-o", self.path("m.off"), "--tolerance", "0.1", "--primitives", "rt")
         self.assertEqual(r.returncode, 0, r.stderr)
         r = run(ma, "-o", self.path("e.off"), "--tolerance", "0.1", "--cones", "edges")
-        self.assert_refused(r, 2, "--cones edges", [self.path("e.off")])
+        self.assert_refused(r, 2, "capsule.ma: --tolerance thins the atoms' balls: the cones of the "
+                            "file's edges (--cones edges)", [self.path("e.off")])
         r = run(self.ma, "-o", self.path("n.off"), "--tolerance", "-1")
         self.assert_refused(r, 2, "--tolerance: must be >= 0, not -1", [self.path("n.off")])
+
+    def test_coordinates_too_large_for_a_cube(self):
+        # The bounding cube's side overflows to infinity: refused, not an endless depth search.
+        ma = self.write("huge.ma", "1e308 0 0 1\n-1e308 0 0 1\n")
+        for extra in ((), ("--tolerance", "0.1")):
+            r = run(ma, "-o", self.path("m.off"), *extra)
+            self.assert_refused(r, 2, "bounding cube has an infinite side", [self.path("m.off")])
 
     def test_check_topology_refuses_an_envelope(self):
         ma = self.write("capsule.ma", "2 1 0\nv 0 0 0 1\nv 4 0 0 0.5\ne 0 1\n")

@@ -73,8 +73,8 @@ TEST(ThinAtoms, EveryDroppedBallHasAKeptContainer) {
 
 TEST(ThinAtoms, NearbyContainedBallsGoAndDuplicatesKeepTheFirst) {
   const double slack = 0.01;
-  // b lies in a up to the slack (centres 0.02 apart); c is a duplicate of a; d is apart.
-  const mg::MedialSurface s = mg_test::atoms({{Vector3d(0.02, 0, 0), 0.5},
+  // b lies in a up to the slack (centres 0.015 apart); c is a duplicate of a; d is apart.
+  const mg::MedialSurface s = mg_test::atoms({{Vector3d(0.015, 0, 0), 0.5},
                                               {Vector3d(0, 0, 0), 0.51},
                                               {Vector3d(0, 0, 0), 0.51},
                                               {Vector3d(3, 0, 0), 0.1}});
@@ -84,6 +84,29 @@ TEST(ThinAtoms, NearbyContainedBallsGoAndDuplicatesKeepTheFirst) {
   // Slack 0 keeps every atom, even a duplicate.
   mg::garbing::thin_atoms(s, 0, nullptr, &kept);
   EXPECT_EQ(kept, (std::vector<int>{0, 1, 2, 3}));
+}
+
+TEST(ThinAtoms, EachPairWithinTheSlackKeepsOneWhereverTheGridCellsFall) {
+  // Far-apart pairs of equal balls, centres 0 < |d| <= slack apart in random directions, at
+  // random places relative to the grid (side 8 slack): one of each pair goes, whichever cells
+  // they fall in (a search of the wrong neighbour cells misses the pairs split by a cell face).
+  const double slack = 0.01;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  mg::MedialSurface s;
+  for (int k = 0; k < 300; ++k) {
+    const Vector3d at(10.0 * k + unit(gen), unit(gen), unit(gen));
+    Vector3d d(unit(gen) - 0.5, unit(gen) - 0.5, unit(gen) - 0.5);
+    d *= slack * (0.1 + 0.89 * unit(gen)) / d.norm();
+    s.atoms.push_back({at, 0.05});
+    s.atoms.push_back({at + d, 0.05});
+  }
+  std::vector<int> kept;
+  mg::garbing::thin_atoms(s, slack, nullptr, &kept);
+  ASSERT_EQ(kept.size(), 300u);
+  for (int i : kept)
+    EXPECT_TRUE(std::count_if(kept.begin(), kept.end(), [&](int j) { return j / 2 == i / 2; }) == 1)
+        << "pair " << i / 2;
 }
 
 TEST(ThinAtoms, SameAtAnyThreadCount) {
@@ -113,6 +136,31 @@ TEST(ThinAtoms, RefusesAnEnvelopeAndABadSlack) {
   opt.tolerance = -0.1;
   capsule.edges.clear();
   EXPECT_THROW(mg::garbing::garb(capsule, opt), mg::InvalidInput);
+}
+
+TEST(Garb, ToleranceKeepsTheGivenAtomsDepth) {
+  // A ball of radius 1 holding 20 of radius 0.05 near its centre: rc = 0.525 gives d = 5 (root
+  // side 2); thinned, the big ball alone would give rc = 1 and d = 4. The given atoms' d stays.
+  mg::MedialSurface s = mg_test::atoms({{Vector3d(0, 0, 0), 1.0}});
+  for (int k = 0; k < 20; ++k)
+    s.atoms.push_back({Vector3d(0.01 * k - 0.1, 0.005 * k, -0.004 * k), 0.05});
+  mg::garbing::GarbOptions opt;
+  const mg::garbing::Garbing exact = mg::garbing::garb(s, opt);
+  ASSERT_EQ(exact.tree.min_depth, 5);
+  opt.tolerance = 1;
+  const mg::garbing::Garbing thin = mg::garbing::garb(s, opt);
+  EXPECT_EQ(thin.thinning.kept, 1u);
+  EXPECT_EQ(thin.tree.min_depth, 5);
+  EXPECT_EQ(mg::garbing::automatic_min_depth(thin.tree.root_side, thin.tree.rc), 4);
+  // Options are checked before the thinning, with build_octree's messages.
+  opt.octree.min_depth = 12;
+  opt.octree.max_depth = 10;
+  try {
+    mg::garbing::garb(s, opt);
+    ADD_FAILURE() << "min depth above max depth accepted";
+  } catch (const mg::InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "min depth 12 must be in [0, max depth 10]");
+  }
 }
 
 /// Largest distance from M2's vertices to G.

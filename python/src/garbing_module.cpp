@@ -253,8 +253,9 @@ py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional
   stats["degenerate_after_repair"] = s.degenerate_after;
   if (tolerance > 0)
     stats["thinning"] = py::dict(
-        py::arg("slack") = r->thinning.slack, py::arg("atoms_kept") = r->thinning.kept,
-        py::arg("atoms_dropped") = r->thinning.dropped, py::arg("seconds") = r->thinning.seconds);
+        py::arg("tolerance_leaf_sides") = tolerance, py::arg("slack") = r->thinning.slack,
+        py::arg("atoms_kept") = r->thinning.kept, py::arg("atoms_dropped") = r->thinning.dropped,
+        py::arg("seconds") = r->thinning.seconds);
   stats["seconds"] =
       py::dict(py::arg("cones") = r->seconds.target_shape, py::arg("octree") = r->seconds.octree,
                py::arg("m1") = r->seconds.m1, py::arg("m2") = r->seconds.m2,

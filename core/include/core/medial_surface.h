@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -43,6 +44,9 @@ void validate(const MedialSurface& s);
 /// automatic octree depth makes leaves <= rc / 8. @pre s has atoms
 /// @note rc is 0 when every radius is 0 (radii >= 0 are valid): callers dividing by it must check.
 double characteristic_radius(const MedialSurface& s);
+
+/// The Morton code (Z-order) of three integers' 21 low bits, x in the lowest bit of each triple.
+std::uint64_t morton_code(std::uint64_t x, std::uint64_t y, std::uint64_t z);
 
 /// S with its atoms in Z-order (Morton order) of their centres: the centres quantized to 2^21
 /// steps per axis over the largest side of their bounding box, ties broken by centre, radius,

@@ -22,7 +22,8 @@ struct GarbOptions {
   /// Thinning of dense atoms (thin_atoms.h), in leaf sides at the minimal depth d: before G is
   /// built, every ball that a nearby kept ball contains up to tolerance * side(d) is left out
   /// (the union of the balls moves by at most that much), and d stays the given atoms' (the
-  /// output's resolution does not change). 0: every atom, G exact. Atoms' G only (not an
+  /// output's resolution does not change). rc, the cone collar's unit and the octree's
+  /// reported rc, is the kept atoms'. 0: every atom, G exact. Atoms' G only (not an
   /// envelope). @pre >= 0 and finite
   double tolerance = 0;
 };

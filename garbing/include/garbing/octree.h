@@ -100,8 +100,14 @@ struct Octree {
 };
 
 /// The automatic minimal depth d (OctreeOptions::min_depth 0): the first level whose cube side
-/// root_side / 2^d is <= rc / 8. @pre root_side > 0, rc > 0, both finite
+/// root_side / 2^d is <= rc / 8.
+/// @pre root_side > 0, rc >= 0
+/// @throws InvalidInput if root_side is infinite (the atoms span more than a double holds)
 int automatic_min_depth(double root_side, double rc);
+
+/// Checks the options build_octree() takes (its @pre on them).
+/// @throws InvalidInput naming the bad option
+void check_octree_options(const OctreeOptions& opt);
 
 /// Step 1: builds T wrapping G. A cell is active when it meets a ball, the solid of a cone
 /// (the convex hull of its two balls) or the prism of a slab (so, the hull of its three balls);
