@@ -287,19 +287,18 @@ int garb_main(int argc, char** argv) {
                                " has radius 0: the balls alone (--primitives rt) need radii > 0; "
                                "only a medial mesh's envelope (edges or faces) takes them");
   const bool envelope = gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::envelope;
-  if (opt.tolerance > 0 && envelope)
-    throw mg::InvalidInput(input +
-                           ": --tolerance thins the atoms' balls: a medial mesh's envelope is "
-                           "garbed exactly (use --primitives rt to garb its atoms)");
-  if (opt.tolerance > 0 && opt.cones.source == gb::ConeSource::ma_edges)
-    throw mg::InvalidInput(input +
-                           ": --tolerance thins the atoms' balls: the cones of the file's edges "
-                           "(--cones edges) would lose their atoms");
   if (check_topology && envelope)
     throw mg::InvalidInput(input +
                            ": --check-topology compares with the union of the balls: a medial "
                            "mesh's envelope needs --primitives rt");
-  const gb::Garbing result = gb::garb(atoms, opt);
+  // What garb() refuses (options, the atoms' extent) is said of this file.
+  const gb::Garbing result = [&] {
+    try {
+      return gb::garb(atoms, opt);
+    } catch (const mg::InvalidInput& e) {
+      throw mg::InvalidInput(input + ": " + e.what());
+    }
+  }();
   std::optional<TopologyCheck> check;
   if (check_topology) {
     const mg::Stopwatch check_clock;

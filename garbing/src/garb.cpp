@@ -24,12 +24,12 @@ Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
                        std::to_string(opt.tolerance));
   if (opt.tolerance > 0 && !of_atoms)
     throw InvalidInput(
-        "the tolerance thins the atoms' balls (--primitives rt): a medial mesh's envelope is "
-        "garbed exactly");
+        "--tolerance thins the atoms' balls: a medial mesh's envelope is garbed exactly (use "
+        "--primitives rt to garb its atoms)");
   if (opt.tolerance > 0 && opt.cones.source == ConeSource::ma_edges)
     throw InvalidInput(
-        "the tolerance thins the atoms' balls: the cones of the file's edges "
-        "(--cones edges) would lose their atoms");
+        "--tolerance thins the atoms' balls: the cones of the file's edges (--cones edges) "
+        "would lose their atoms");
   OctreeOptions octree = opt.octree;
   if (opt.tolerance > 0) check_octree_options(octree);  // before the thinning reads min_depth
   ThinStats thinning;
@@ -41,13 +41,9 @@ Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
     const Frame frame = bounding_cube_frame(sorted);
     if (opt.tolerance > 0) {
       // The given atoms' resolution: their d, in their frame, whatever the thinning leaves.
-      if (octree.min_depth == 0) {
-        octree.min_depth = automatic_min_depth(frame.cube_side, characteristic_radius(sorted));
-        if (octree.min_depth > octree.max_depth)
-          throw InvalidInput("automatic minimal depth d = " + std::to_string(octree.min_depth) +
-                             " exceeds the maximal depth " + std::to_string(octree.max_depth) +
-                             " (raise --max-depth or set --min-depth)");
-      }
+      if (octree.min_depth == 0)
+        octree.min_depth =
+            automatic_min_depth(frame.cube_side, characteristic_radius(sorted), octree.max_depth);
       const double slack = opt.tolerance * std::ldexp(frame.cube_side, -octree.min_depth);
       // G of the balls and their own cones: the file's edges and faces are not read.
       MedialSurface balls;

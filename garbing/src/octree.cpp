@@ -48,12 +48,7 @@ class OctreeBuilder {
     if (opt_.min_depth > 0) {
       tree_.min_depth = opt_.min_depth;
     } else {
-      const int d = automatic_min_depth(tree_.root_side, tree_.rc);
-      if (d > opt_.max_depth)
-        throw InvalidInput("automatic minimal depth d = " + std::to_string(d) +
-                           " exceeds the maximal depth " + std::to_string(opt_.max_depth) +
-                           " (raise --max-depth or set --min-depth)");
-      tree_.min_depth = d;
+      tree_.min_depth = automatic_min_depth(tree_.root_side, tree_.rc, opt_.max_depth);
     }
   }
 
@@ -964,11 +959,15 @@ class OctreeBuilder {
 
 }  // namespace
 
-int automatic_min_depth(double root_side, double rc) {
+int automatic_min_depth(double root_side, double rc, int max_depth) {
   if (!std::isfinite(root_side))
     throw InvalidInput("the atoms' bounding cube has an infinite side: coordinates too large");
   int d = 0;
   while (std::ldexp(root_side, -d) > rc / 8) ++d;  // Octree::side(d)
+  if (d > max_depth)
+    throw InvalidInput("automatic minimal depth d = " + std::to_string(d) +
+                       " exceeds the maximal depth " + std::to_string(max_depth) +
+                       " (raise --max-depth or set --min-depth)");
   return d;
 }
 

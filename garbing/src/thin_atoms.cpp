@@ -5,6 +5,7 @@
 #include "core/errors.h"
 #include "core/medial_surface.h"
 #include "core/timer.h"
+#include "garbing/target_shape.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -67,12 +68,10 @@ MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* st
   if (!atoms.edges.empty() || !atoms.faces.empty())
     throw InvalidInput(
         "thin_atoms: a medial mesh's envelope (edges or faces) is not a union of balls");
+  validate(atoms);
+  require_positive_radii(atoms);
   const std::vector<MedialAtom>& a = atoms.atoms;
   const std::size_t n = a.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (!(a[i].radius > 0) || !std::isfinite(a[i].radius) || !a[i].centre.allFinite())
-      throw InvalidInput("thin_atoms: atom " + std::to_string(i) +
-                         " needs a finite centre and a finite radius > 0");
   std::vector<char> kept(n, 1);
   if (slack > 0 && n > 1) {
     // Grid of side h = 8 slack: the centres within 4 slack of a point lie in the 2 x 2 x 2

@@ -151,7 +151,7 @@ TEST(Garb, ToleranceKeepsTheGivenAtomsDepth) {
   const mg::garbing::Garbing thin = mg::garbing::garb(s, opt);
   EXPECT_EQ(thin.thinning.kept, 1u);
   EXPECT_EQ(thin.tree.min_depth, 5);
-  EXPECT_EQ(mg::garbing::automatic_min_depth(thin.tree.root_side, thin.tree.rc), 4);
+  EXPECT_EQ(mg::garbing::automatic_min_depth(thin.tree.root_side, thin.tree.rc, 14), 4);
   // Options are checked before the thinning, with build_octree's messages.
   opt.octree.min_depth = 12;
   opt.octree.max_depth = 10;

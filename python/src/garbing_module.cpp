@@ -220,9 +220,7 @@ py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional
   opt.refine.max_travel = max_travel;
   opt.refine.repair_rounds = repair_rounds;
   opt.refine.max_gap = max_gap;
-  if (!(tolerance >= 0) || !std::isfinite(tolerance))
-    bad("tolerance must be finite and >= 0, got " + std::to_string(tolerance));
-  opt.tolerance = tolerance;
+  opt.tolerance = tolerance;  // garb() checks it
   if (gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::atoms)
     for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
       if (!(atoms.atoms[i].radius > 0))

@@ -102,8 +102,9 @@ struct Octree {
 /// The automatic minimal depth d (OctreeOptions::min_depth 0): the first level whose cube side
 /// root_side / 2^d is <= rc / 8.
 /// @pre root_side > 0, rc >= 0
-/// @throws InvalidInput if root_side is infinite (the atoms span more than a double holds)
-int automatic_min_depth(double root_side, double rc);
+/// @throws InvalidInput if root_side is infinite (the atoms span more than a double holds) or
+///         d exceeds max_depth
+int automatic_min_depth(double root_side, double rc, int max_depth);
 
 /// Checks the options build_octree() takes (its @pre on them).
 /// @throws InvalidInput naming the bad option
