@@ -48,7 +48,7 @@ class Scaling(unittest.TestCase):
             self.assertLessEqual(marks[-1], float(row["peak_mb"]))
             # The thinned atoms: fewer kept, M2 as close to the generated mesh (10k atoms: within
             # 5 % of the exact G's Hausdorff distance; measured 0.38 % against 0.67 %).
-            for key in ("t16", "t8"):
+            for key in ("c4", "c8", "k16"):
                 self.assertLess(int(row[key + "_atoms"]), atoms)
                 self.assertGreater(float(row[key + "_garbing_s"]), 0)
                 self.assertLess(float(row[key + "_h_pct"]), 1.05 * float(row["h_pct"]))

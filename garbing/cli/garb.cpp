@@ -2,7 +2,7 @@
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
 //        [--no-criterion N ...] [--primitives auto|ma|rt]
 //        [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C]
-//        [--spheres-only] [--tolerance F] [--refine K] [--no-dual] [--max-travel T]
+//        [--spheres-only] [--tolerance F] [--thinning cover|contain] [--refine K] [--no-dual] [--max-travel T]
 //        [--repair-rounds N]
 //        [--max-gap F] [--check-topology] [--stats FILE.json] [--threads N]
 #include "garbing/garb.h"
@@ -154,9 +154,11 @@ Json stats_json(const std::string& input, const mg::MedialSurface& atoms, const 
   j.update(octree_json(r.tree, criteria_off, opt.octree.prune_lists && !r.g.is_envelope()));
   if (opt.tolerance > 0)
     j["thinning"] = {{"tolerance_leaf_sides", opt.tolerance},
+                     {"method", opt.thinning == gb::ThinMethod::cover ? "cover" : "contain"},
                      {"slack", r.thinning.slack},
                      {"atoms_kept", r.thinning.kept},
                      {"atoms_dropped", r.thinning.dropped},
+                     {"atoms_covered", r.thinning.covered},
                      {"seconds", r.thinning.seconds}};
   j["boundary_leaves"] = owners.size();
   j["m1"] = m1;
@@ -207,7 +209,7 @@ int garb_main(int argc, char** argv) {
       ->check(CLI::Range(1, 20));
   app.add_option("--no-criterion", off, "switch a subdivision criterion off (1-4, repeatable)")
       ->check(CLI::Range(1, 4));
-  std::string primitives = "auto", cones = "rt";
+  std::string primitives = "auto", cones = "rt", thinning = "cover";
   bool spheres_only = false, no_dual = false;
   app.add_option("--primitives", primitives,
                  "G's primitives: ma (the envelope: balls, a cone per edge, a slab per face), rt "
@@ -224,10 +226,14 @@ int garb_main(int argc, char** argv) {
       ->check(mg::NonNegative);
   app.add_flag("--spheres-only", spheres_only, "no cones: G is the union of the spheres");
   app.add_option("--tolerance", opt.tolerance,
-                 "thin dense atoms first: leave out each ball that a nearby kept ball contains "
-                 "up to F leaf sides at depth d (the union of the balls moves by at most that); "
-                 "0: every atom")
+                 "thin dense atoms first: leave out balls so that the union of the balls moves "
+                 "by at most F leaf sides at depth d (--thinning says how); 0: every atom")
       ->check(mg::NonNegative);
+  app.add_option("--thinning", thinning,
+                 "with --tolerance: cover (a ball goes when nearby kept balls together cover "
+                 "it: the kept count is set by F) or contain (only when one kept ball contains "
+                 "it: more atoms kept, G moves less)")
+      ->check(CLI::IsMember({"cover", "contain"}));
   app.add_option("--refine", opt.refine.subdivisions, "rounds of 1-to-4 subdivision + migration")
       ->check(mg::NonNegative);
   app.add_flag("--no-dual", no_dual, "migrate M1 itself, triangulated (ablation)");
@@ -266,6 +272,9 @@ int garb_main(int argc, char** argv) {
   opt.octree.prune_lists = !full_lists;
   opt.cones.source = spheres_only ? gb::ConeSource::none : gb::parse_cone_source(cones);
   opt.primitives = gb::parse_primitive_set(primitives);
+  opt.thinning = thinning == "contain" ? gb::ThinMethod::contain : gb::ThinMethod::cover;
+  if (app.count("--thinning") > 0 && !(opt.tolerance > 0))
+    throw mg::InvalidInput("--thinning chooses how --tolerance thins: give --tolerance F > 0");
   const bool cone_options = app.count("--cones") + app.count("--cone-filter") +
                                 app.count("--cone-collar") + app.count("--spheres-only") >
                             0;

@@ -48,7 +48,8 @@ Garbing garb(const MedialSurface& atoms, const GarbOptions& opt) {
       // G of the balls and their own cones: the file's edges and faces are not read.
       MedialSurface balls;
       balls.atoms = std::move(sorted.atoms);
-      sorted = thin_atoms(balls, slack, &thinning);
+      sorted = opt.thinning == ThinMethod::cover ? thin_atoms_by_cover(balls, slack, &thinning)
+                                                 : thin_atoms(balls, slack, &thinning);
     }
     return make_target_shape(std::move(sorted), opt.primitives, opt.cones, frame);
   }();

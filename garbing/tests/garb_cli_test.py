@@ -130,15 +130,24 @@ class GarbCli(U.CliTestCase):
         rows = "".join("%r 0 0 0.4\n%r 0.001 0 0.399\n" % (0.01 * k, 0.01 * k + 0.001) for k in range(100))
         ma = self.write("rows.ma", rows)
         for name, extra in (("exact", ()), ("thin", ("--tolerance", "0.25")),
-                            ("thin1", ("--tolerance", "0.25", "--threads", "1"))):
+                            ("thin1", ("--tolerance", "0.25", "--threads", "1")),
+                            ("contain", ("--tolerance", "0.25", "--thinning", "contain"))):
             r = run(ma, "-o", self.path(name + ".off"), "--stats", self.path(name + ".json"), *extra)
             self.assertEqual(r.returncode, 0, r.stderr)
-        exact, thin = (json.load(open(self.path(n + ".json"))) for n in ("exact", "thin"))
+        exact, thin, contain = (json.load(open(self.path(n + ".json")))
+                                for n in ("exact", "thin", "contain"))
         self.assertNotIn("thinning", exact)
-        t = thin["thinning"]
+        t, c = thin["thinning"], contain["thinning"]
         self.assertEqual(t["tolerance_leaf_sides"], 0.25)
+        self.assertEqual((t["method"], c["method"]), ("cover", "contain"))
         self.assertEqual(t["atoms_kept"] + t["atoms_dropped"], 200)
         self.assertLessEqual(t["atoms_kept"], 100)
+        # Along a row of nearly equal balls, neighbours cover a ball far beyond one container's
+        # reach: the cover pass keeps a fraction of what containment keeps.
+        self.assertGreater(t["atoms_covered"], 0)
+        self.assertEqual(c["atoms_covered"], 0)
+        self.assertLess(3 * t["atoms_kept"], c["atoms_kept"])
+        self.assertTrue(contain["m2"]["closed"])
         self.assertEqual(thin["atoms"], 200)  # the input's count
         self.assertEqual(thin["min_depth"], exact["min_depth"])
         self.assertAlmostEqual(t["slack"], 0.25 * exact["root_side"] / 2 ** exact["min_depth"], places=12)
@@ -157,6 +166,11 @@ class GarbCli(U.CliTestCase):
                             "file's edges (--cones edges)", [self.path("e.off")])
         r = run(self.ma, "-o", self.path("n.off"), "--tolerance", "-1")
         self.assert_refused(r, 2, "--tolerance: must be >= 0, not -1", [self.path("n.off")])
+        r = run(self.ma, "-o", self.path("n.off"), "--thinning", "contain")
+        self.assert_refused(r, 2, "--thinning chooses how --tolerance thins: give --tolerance F > 0",
+                            [self.path("n.off")])
+        r = run(self.ma, "-o", self.path("n.off"), "--tolerance", "0.1", "--thinning", "union")
+        self.assert_refused(r, 2, "--thinning: union not in {cover,contain}", [self.path("n.off")])
 
     def test_coordinates_too_large_for_a_cube(self):
         # The bounding cube's side overflows to infinity: refused, not an endless depth search.

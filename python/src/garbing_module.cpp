@@ -190,7 +190,7 @@ py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional
                const std::string& primitives, const std::optional<std::string>& cones,
                const std::optional<double>& cone_filter, const std::optional<double>& cone_collar,
                bool spheres_only, int refine, bool dual, double max_travel, int repair_rounds,
-               double max_gap, double tolerance, int threads) {
+               double max_gap, double tolerance, const std::string& thinning, int threads) {
   namespace gb = mg::garbing;
   const mg::MedialSurface atoms = atoms_of(centres, radii, edges, faces);
   gb::GarbOptions opt;
@@ -221,6 +221,9 @@ py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional
   opt.refine.repair_rounds = repair_rounds;
   opt.refine.max_gap = max_gap;
   opt.tolerance = tolerance;  // garb() checks it
+  if (thinning != "cover" && thinning != "contain")
+    bad("thinning must be 'cover' or 'contain', got '" + thinning + "'");
+  opt.thinning = thinning == "contain" ? gb::ThinMethod::contain : gb::ThinMethod::cover;
   if (gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::atoms)
     for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
       if (!(atoms.atoms[i].radius > 0))
@@ -251,9 +254,10 @@ py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional
   stats["degenerate_after_repair"] = s.degenerate_after;
   if (tolerance > 0)
     stats["thinning"] = py::dict(
-        py::arg("tolerance_leaf_sides") = tolerance, py::arg("slack") = r->thinning.slack,
-        py::arg("atoms_kept") = r->thinning.kept, py::arg("atoms_dropped") = r->thinning.dropped,
-        py::arg("seconds") = r->thinning.seconds);
+        py::arg("tolerance_leaf_sides") = tolerance, py::arg("method") = thinning,
+        py::arg("slack") = r->thinning.slack, py::arg("atoms_kept") = r->thinning.kept,
+        py::arg("atoms_dropped") = r->thinning.dropped,
+        py::arg("atoms_covered") = r->thinning.covered, py::arg("seconds") = r->thinning.seconds);
   stats["seconds"] =
       py::dict(py::arg("cones") = r->seconds.target_shape, py::arg("octree") = r->seconds.octree,
                py::arg("m1") = r->seconds.m1, py::arg("m2") = r->seconds.m2,
@@ -351,14 +355,15 @@ Returns (centres (k, 3), radii (k,)) or, with connectivity or simplify,
         py::arg("cone_filter") = py::none(), py::arg("cone_collar") = py::none(),
         py::arg("spheres_only") = false, py::arg("refine") = 0, py::arg("dual") = true,
         py::arg("max_travel") = 4.0, py::arg("repair_rounds") = 8, py::arg("max_gap") = 0.5,
-        py::arg("tolerance") = 0.0, py::arg("threads") = 0,
+        py::arg("tolerance") = 0.0, py::arg("thinning") = "cover", py::arg("threads") = 0,
         R"(The garbing of medial atoms, as `garb`: a closed triangle mesh M2.
 
 centres (n, 3) float64, radii (n,); edges (e, 2) and faces (f, 3) make a medial mesh whose
 envelope (balls, cones, slabs) is garbed (primitives='auto' or 'ma'); 'rt' garbs the balls and
 the cones of `cones` ('rt', 'all', 'edges', 'none'). cone_filter and cone_collar (garb's defaults 0.9 and 1), like cones, mean primitives='rt'.
 tolerance: thin dense atoms first (leaf sides at depth d; stats['thinning'] says how many
-were kept). The other options are garb's.
+were kept), by thinning='cover' (nearby kept balls together cover a ball that goes) or
+'contain' (one kept ball contains it). The other options are garb's.
 Returns (vertices (v, 3) float64, faces (t, 3) int32, stats dict). Raises ValueError on bad input.)");
   m.def("distance", &distance, py::arg("mesh_vertices"), py::arg("mesh_faces"),
         py::arg("reference_vertices"), py::arg("reference_faces"), py::kw_only(),

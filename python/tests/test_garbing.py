@@ -94,8 +94,17 @@ class Garbing(unittest.TestCase):
         self.assertEqual(st["thinning"]["atoms_kept"] + st["thinning"]["atoms_dropped"], len(radii))
         self.assertGreater(st["thinning"]["atoms_dropped"], 0)
         self.assertNotIn("thinning", s4)
+        self.assertEqual(st["thinning"]["method"], "cover")
+        run("garb", ma, "-o", self.path("ringc.off"), "--tolerance", 1, "--min-depth", 4,
+            "--thinning", "contain")
+        vc, fc, sc = garbing.garb(centres, radii, min_depth=4, tolerance=1.0, thinning="contain")
+        np.testing.assert_array_equal(vc, read_off(self.path("ringc.off"))[0])
+        self.assertEqual(sc["thinning"]["method"], "contain")
+        self.assertEqual(sc["thinning"]["atoms_covered"], 0)
         with self.assertRaisesRegex(ValueError, "tolerance must be finite and >= 0"):
             garbing.garb(centres, radii, tolerance=-1)
+        with self.assertRaisesRegex(ValueError, "thinning must be 'cover' or 'contain'"):
+            garbing.garb(centres, radii, tolerance=1.0, thinning="union")
 
     def write_slab(self):
         ma = self.path("slab.ma")

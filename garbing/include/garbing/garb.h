@@ -20,12 +20,14 @@ struct GarbOptions {
   /// Which primitives G has: a medial mesh's envelope, or the atoms' balls and cones.
   PrimitiveSet primitives = PrimitiveSet::automatic;
   /// Thinning of dense atoms (thin_atoms.h), in leaf sides at the minimal depth d: before G is
-  /// built, every ball that a nearby kept ball contains up to tolerance * side(d) is left out
-  /// (the union of the balls moves by at most that much), and d stays the given atoms' (the
-  /// output's resolution does not change). rc, the cone collar's unit and the octree's
-  /// reported rc, is the kept atoms'. 0: every atom, G exact. Atoms' G only (not an
-  /// envelope). @pre >= 0 and finite
+  /// built, balls are left out by `thinning` with slack tolerance * side(d) (the union of the
+  /// balls moves by at most that much), and d stays the given atoms' (the output's resolution
+  /// does not change). rc, the cone collar's unit and the octree's reported rc, is the kept
+  /// atoms'. 0: every atom, G exact. Atoms' G only (not an envelope). @pre >= 0 and finite
   double tolerance = 0;
+  /// How (with tolerance > 0): cover (thin_atoms_by_cover(): the kept count is set by the
+  /// tolerance) or contain (thin_atoms(): fewer balls left out, G's boundary moves less).
+  ThinMethod thinning = ThinMethod::cover;
 };
 
 /// Wall-clock seconds of each stage.
@@ -56,7 +58,8 @@ struct Garbing {
 /// Garbs the atoms: with S = spatially_sorted(atoms), G = make_target_shape(S, opt.primitives,
 /// opt.cones, bounding_cube_frame(S)), then
 /// T = build_octree(G), M1 = extract_coarse_mesh(T), M2 = refine_mesh(M1, T, G). With
-/// opt.tolerance > 0, G is built from thin_atoms(S, tolerance * side(d)) in the same frame, d
+/// opt.tolerance > 0, G is built from thin_atoms_by_cover(S, tolerance * side(d)) (or
+/// thin_atoms(), opt.thinning) in the same frame, d
 /// the minimal depth of S (opt.octree.min_depth, or automatic_min_depth of S's frame and rc),
 /// and the octree is given that d (S's edges and faces, unused by G then, are left out). The result
 /// is the same at any thread count and for the atoms in any order (atoms with equal centre and

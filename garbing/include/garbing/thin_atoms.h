@@ -1,9 +1,11 @@
 #pragma once
 /// \file thin_atoms.h
 /// Thinning of dense atoms before G is built (`garb --tolerance`, docs/algorithm.md "Thinned
-/// atoms"): the balls that a nearby kept ball contains up to a slack are left out, so that the
-/// union of the balls moves by at most the slack and G is built from a number of atoms set by
-/// the slack rather than by the input's density.
+/// atoms"): balls are left out so that the union of the balls moves by at most a slack. Two
+/// methods: `contain` leaves out the balls that one nearby kept ball contains up to the slack
+/// (the kept count still grows with the input's density); `cover` also leaves out the balls
+/// that the union of nearby kept balls covers, so that the kept count is set by the slack and
+/// the shape, not by the input's density.
 
 #include "core/medial_surface.h"
 
@@ -12,11 +14,18 @@
 
 namespace mg::garbing {
 
-/// What thin_atoms() did.
+/// How atoms are thinned.
+enum class ThinMethod {
+  contain,  ///< thin_atoms(): a ball goes when one kept ball contains it up to the slack
+  cover,    ///< thin_atoms_by_cover(): ... or when the union of kept balls covers it
+};
+
+/// What thin_atoms() or thin_atoms_by_cover() did.
 struct ThinStats {
   double slack = 0;         ///< model units
   std::size_t kept = 0;     ///< atoms kept
   std::size_t dropped = 0;  ///< atoms left out
+  std::size_t covered = 0;  ///< of those, left out by the cover pass (thin_atoms_by_cover())
   double seconds = 0;       ///< wall clock
 };
 
@@ -37,5 +46,37 @@ struct ThinStats {
 /// @throws InvalidInput if a precondition fails
 MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* stats = nullptr,
                          std::vector<int>* kept_index = nullptr);
+
+/// Whether the balls `others`, each grown by `slack`, cover `ball`, proved through those whose
+/// grown ball holds the centre c of `ball`: their grown balls meet the sphere S of `ball` in
+/// caps; the caps cover S if every point of each cap's circle lies inside another cap (the
+/// uncovered part, were it not empty, would be bounded by such points), tested exactly on
+/// arcs (each shrunk by 1e-9 of an angle); then every segment from c to S lies in one grown
+/// ball (convex, holding both ends), so the ball is covered. A ball one grown ball contains is
+/// covered. Sound up to the rounding of the caps (an angle of about 1e-16 r / |c - c_j|), not
+/// complete: a ball covered only with the help of balls that do not hold c is not found
+/// covered.
+/// @pre radii > 0, slack >= 0, finite numbers
+bool union_covers_ball(const MedialAtom& ball, const std::vector<MedialAtom>& others,
+                       double slack);
+
+/// thin_atoms(atoms, slack / 2), then a cover pass at slack / 2 over the atoms it kept: they are
+/// visited in thin_atoms()'s order (on a grid of side h = sqrt(2 rc slack / 2), rc =
+/// characteristic_radius(atoms), or coarser as there); first, greedily, every atom with no atom
+/// kept by then within sqrt(2 r slack / 2) of its centre (r its radius: the distance at which
+/// a neighbour of equal radius still covers the poles of its sphere) is kept; then each other
+/// atom goes when union_covers_ball() proves that the kept atoms with centre near its own (in
+/// the 3 x 3 x 3 cells of side h around it) cover it up to slack / 2, and is kept otherwise.
+/// Every ball left out lies within slack of the union of the kept balls, and the kept balls are
+/// given ones: the unions' Hausdorff distance is at most `slack` (up to rounding), and the kept
+/// count is about the medial surface's area / (rc slack) once the atoms are denser than that.
+/// Deterministic as thin_atoms() (no dependence on the thread count).
+/// @param stats  slack, kept and dropped as thin_atoms(); covered: dropped by the cover pass
+/// @param kept_index  if given, receives the input index of each kept atom
+/// @pre as thin_atoms()
+/// @throws InvalidInput if a precondition fails
+MedialSurface thin_atoms_by_cover(const MedialSurface& atoms, double slack,
+                                  ThinStats* stats = nullptr,
+                                  std::vector<int>* kept_index = nullptr);
 
 }  // namespace mg::garbing
