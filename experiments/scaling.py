@@ -5,11 +5,11 @@ The bumpy torus generated at three resolutions (`models generate bumpy-torus --r
 R x T vertices), skeletonized from its vertices with `--merge-tol 0` (every vertex pole kept:
 about one atom per vertex), garbed with its default options (`garb --stats`: seconds per phase,
 peak memory and its high-water mark at the end of each phase), garbed again with the paper's
-cell lists (`--full-lists`) and with the atoms thinned first (`--tolerance F`, F = 1/16 and 1/8
-leaf sides), and the same balls meshed by OpenVDB (`evaluate vdb`, the union of
-the spheres) at M2's vertex count. Each M2 is measured against the generated mesh
-(`evaluate distance`, Hausdorff and RMS in % of its diagonal): the thinned atoms' meshes must be
-no farther from the object than the exact G's. One program at a time, smallest size first, so times and memory are not
+cell lists (`--full-lists`) and with the atoms thinned first (`--tolerance F`: F = 1/4 and 1/8
+leaf sides with the default `--thinning cover`, F = 1/16 with `--thinning contain`), and the
+same balls meshed by OpenVDB (`evaluate vdb`, the union of the spheres) at M2's vertex count.
+Each M2 is measured against the generated mesh (`evaluate distance`, Hausdorff and RMS in % of
+its diagonal), to compare the thinned atoms' meshes with the exact G's. One program at a time, smallest size first, so times and memory are not
 shared with another job; each program's figures are one run (the 1M-atom garbing takes about a
 minute). The log-log slope of each phase from the middle size to the largest is what issue 20
 bounds (<= 0.3 for the garbing: the output's size does not grow). Writes
@@ -29,15 +29,16 @@ import harness as H  # noqa: E402
 # Size name -> (ring, tube) of the generated bumpy torus (the reference one is 126 x 126).
 SIZES = {"10k": (126, 80), "100k": (400, 250), "1m": (1260, 800)}
 PHASES = ["cones", "octree", "m1", "m2"]  # garb --stats "seconds" keys: the garbing's phases
-# garb --tolerance values (leaf sides at depth d) and their column prefixes.
-TOLERANCES = [("t16", "1/16", 0.0625), ("t8", "1/8", 0.125)]
+# garb --tolerance runs: column prefix, label, F (leaf sides at depth d), --thinning.
+TOLERANCES = [("c4", "1/4", 0.25, "cover"), ("c8", "1/8", 0.125, "cover"),
+              ("k16", "1/16 contain", 0.0625, "contain")]
 
 COLUMNS = ["size", "vertices", "atoms", "skeletonize_s", "m2_v", "depth", "leaves", "balls_per_leaf",
            "garbing_s", "cones_s", "octree_s", "m1_s", "m2_s", "peak_mb", "peak_mb_cones",
            "peak_mb_octree", "peak_mb_m1", "peak_mb_m2", "vdb_v", "vdb_voxel",
            "vdb_s", "vdb_peak_mb", "vdb_over_garbing_s", "garbing_over_vdb_mb", "full_balls_per_leaf",
            "full_garbing_s", "full_octree_s", "full_m2_s", "full_peak_mb", "h_pct", "rms_pct"]
-for _key, _, _ in TOLERANCES:
+for _key, _, _, _ in TOLERANCES:
     COLUMNS += [_key + "_atoms", _key + "_garbing_s", _key + "_peak_mb", _key + "_h_pct",
                 _key + "_rms_pct"]
 HEADERS = ["size", "mesh V", "atoms", "skeletonize s", "M2 V", "depth", "leaves", "balls per active leaf",
@@ -47,7 +48,7 @@ HEADERS = ["size", "mesh V", "atoms", "skeletonize s", "M2 V", "depth", "leaves"
            "OpenVDB voxel", "OpenVDB s", "OpenVDB peak MB", "OpenVDB s / garbing s",
            "garbing MB / OpenVDB MB", "--full-lists: balls per active leaf", "garbing s",
            "octree s", "M2 s", "peak MB", "H(M2, mesh) %", "RMS %"]
-for _, _name, _ in TOLERANCES:
+for _, _name, _, _ in TOLERANCES:
     HEADERS += ["--tolerance %s: atoms kept" % _name, "garbing s", "peak MB", "H(M2, mesh) %",
                 "RMS %"]
 
@@ -89,10 +90,10 @@ def size_row(R, size, progress):
 
     row["h_pct"], row["rms_pct"] = distance(R.path(size, "m2.off"), "%s distance" % size)
     # The atoms thinned first (garb --tolerance): fewer balls, the same depth d.
-    for key, name, tolerance in TOLERANCES:
+    for key, name, tolerance, method in TOLERANCES:
         progress("%s: garb --tolerance %s" % (size, name))
         out = R.path(size, "m2_%s.off" % key)
-        t = R.run_stats("garb", atoms, "-o", out, "--tolerance", tolerance,
+        t = R.run_stats("garb", atoms, "-o", out, "--tolerance", tolerance, "--thinning", method,
                         stats=R.path(size, "garb_%s.json" % key),
                         label="%s garb --tolerance %s" % (size, name))
         row.update({key + "_atoms": t["thinning"]["atoms_kept"],
@@ -117,7 +118,7 @@ def slopes(rows):
     """Log-log slopes between consecutive sizes: {key: [(from, to, slope)]}."""
     out = {}
     keys = ["garbing_s"] + [p + "_s" for p in PHASES] + ["peak_mb", "vdb_s"]
-    keys += [k + "_garbing_s" for k, _, _ in TOLERANCES]
+    keys += [k + "_garbing_s" for k, _, _, _ in TOLERANCES]
     for key in keys:
         out[key] = [(a["size"], b["size"],
                      math.log(b[key] / a[key]) / math.log(b["atoms"] / a["atoms"]))
@@ -141,9 +142,10 @@ def plot(out, rows):
         ax.loglog(atoms, [r[ours] for r in rows], "o-", color="k", label="garbing")
         ax.loglog(atoms, [r[theirs] for r in rows], "x-", color="tab:red",
                   label="OpenVDB (same V)")
-        for (key, name, _), style in zip(TOLERANCES, [".-", ".:"]):
+        for (key, name, _, _), style, colour in zip(TOLERANCES, [".-", ".:", "+-."],
+                                                     ["tab:green", "tab:olive", "tab:purple"]):
             column = key + ("_garbing_s" if ours == "garbing_s" else "_peak_mb")
-            ax.loglog(atoms, [r[column] for r in rows], style, color="tab:blue",
+            ax.loglog(atoms, [r[column] for r in rows], style, color=colour,
                       label="garbing, --tolerance %s" % name)
         ax.set_xlabel("atoms")
         ax.set_ylabel(ylabel)
@@ -186,7 +188,8 @@ def main(argv):
              "the same balls at M2's vertex count (`evaluate vdb --match-vertices`, then timed "
              "alone at the voxel found); the last columns garb the same atoms with the paper's "
              "cell lists (`--full-lists`) and with the atoms thinned first (`--tolerance F`, "
-             "F in leaf sides at the given atoms' depth d); H and RMS are M2's distances to the "
+             "F in leaf sides at the given atoms' depth d, `--thinning cover` unless the "
+             "column says contain); H and RMS are M2's distances to the "
              "generated mesh (`evaluate distance`), in % of its diagonal. One program at a time; "
              "one run each.", "",
              "Command: `/usr/bin/python3 experiments/scaling.py --build %s --sizes %s` "
