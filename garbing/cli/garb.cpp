@@ -232,7 +232,7 @@ int garb_main(int argc, char** argv) {
   app.add_option("--thinning", thinning,
                  "with --tolerance: cover (a ball goes when nearby kept balls together cover "
                  "it: the kept count is set by F) or contain (only when one kept ball contains "
-                 "it: more atoms kept, G moves less)")
+                 "it: more atoms kept, the same bound)")
       ->check(CLI::IsMember({"cover", "contain"}));
   app.add_option("--refine", opt.refine.subdivisions, "rounds of 1-to-4 subdivision + migration")
       ->check(mg::NonNegative);

@@ -151,6 +151,7 @@ MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* st
     stats->slack = slack;
     stats->kept = out.atoms.size();
     stats->dropped = n - out.atoms.size();
+    stats->covered = 0;
     stats->seconds = clock.seconds();
   }
   return out;
@@ -218,13 +219,15 @@ bool arcs_cover_circle(std::vector<Arc>& arcs) {
 bool caps_cover_sphere(std::vector<Cap>& caps, std::vector<Arc>& arcs) {
   // Only the caps no other one holds, the largest first: cap j lies in cap k if theta_j <=
   // theta_k and angle(u_j, u_k) <= theta_k - theta_j, i.e. u_j . u_k >= cos(theta_k - theta_j).
+  // Leaving out a cap can only fail a proof, so nearly equal caps (within 1e-12) go too: an
+  // equal cap's circle lies on the other's, not inside it.
   std::sort(caps.begin(), caps.end(), [](const Cap& x, const Cap& y) { return x.c < y.c; });
   std::size_t m = 0;
   double area = 0;  // the caps' areas / 2 pi: the sphere's is 2
   for (std::size_t j = 0; j < caps.size(); ++j) {
     bool inside = false;
     for (std::size_t k = 0; k < m && !inside; ++k)
-      inside = caps[j].u.dot(caps[k].u) >= caps[k].c * caps[j].c + caps[k].s * caps[j].s + 1e-12;
+      inside = caps[j].u.dot(caps[k].u) >= caps[k].c * caps[j].c + caps[k].s * caps[j].s - 1e-12;
     if (!inside) {
       caps[m++] = caps[j];
       area += 1 - caps[j].c;
@@ -253,9 +256,11 @@ bool caps_cover_sphere(std::vector<Cap>& caps, std::vector<Arc>& arcs) {
         inside_one = true;  // the whole circle
         continue;
       }
-      if (e >= rho) continue;
+      // Circles nearly coaxial (rho tiny): their arcs' directions would be rounding's.
+      if (e >= rho || rho < 1e-9) continue;
       // The arc of half-width w = acos(e / rho) around (a, b) / rho.
-      const double x0 = a / rho, y0 = b / rho, cw = e / rho, sw = std::sqrt(1 - cw * cw);
+      const double x0 = a / rho, y0 = b / rho, cw = std::max(e / rho, -1.0);
+      const double sw = std::sqrt(1 - cw * cw);
       const double start = diamond(x0 * cw + y0 * sw, y0 * cw - x0 * sw) + shrink;
       const double end = diamond(x0 * cw - y0 * sw, y0 * cw + x0 * sw) - shrink;
       if (start >= 4 || end <= 0) continue;  // an end too near 0 to tell: left out
@@ -285,7 +290,7 @@ MedialSurface thin_atoms_by_cover(const MedialSurface& atoms, double slack, Thin
                                   std::vector<int>* kept_index) {
   const Stopwatch clock;
   if (!(slack >= 0) || !std::isfinite(slack))
-    throw InvalidInput("thin_atoms: the slack must be finite and >= 0, got " +
+    throw InvalidInput("thin_atoms_by_cover: the slack must be finite and >= 0, got " +
                        std::to_string(slack));
   // First the containment pass at half the slack (it checks the preconditions): cheap, it
   // leaves the cover pass far fewer balls to prove.

@@ -166,9 +166,10 @@ class GarbCli(U.CliTestCase):
                             "file's edges (--cones edges)", [self.path("e.off")])
         r = run(self.ma, "-o", self.path("n.off"), "--tolerance", "-1")
         self.assert_refused(r, 2, "--tolerance: must be >= 0, not -1", [self.path("n.off")])
-        r = run(self.ma, "-o", self.path("n.off"), "--thinning", "contain")
-        self.assert_refused(r, 2, "--thinning chooses how --tolerance thins: give --tolerance F > 0",
-                            [self.path("n.off")])
+        for extra in (("--thinning", "contain"), ("--tolerance", "0", "--thinning", "cover")):
+            r = run(self.ma, "-o", self.path("n.off"), *extra)
+            self.assert_refused(r, 2, "--thinning chooses how --tolerance thins: give --tolerance "
+                                "F > 0", [self.path("n.off")])
         r = run(self.ma, "-o", self.path("n.off"), "--tolerance", "0.1", "--thinning", "union")
         self.assert_refused(r, 2, "--thinning: union not in {cover,contain}", [self.path("n.off")])
 

@@ -190,7 +190,8 @@ py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional
                const std::string& primitives, const std::optional<std::string>& cones,
                const std::optional<double>& cone_filter, const std::optional<double>& cone_collar,
                bool spheres_only, int refine, bool dual, double max_travel, int repair_rounds,
-               double max_gap, double tolerance, const std::string& thinning, int threads) {
+               double max_gap, double tolerance, const std::optional<std::string>& thinning_given,
+               int threads) {
   namespace gb = mg::garbing;
   const mg::MedialSurface atoms = atoms_of(centres, radii, edges, faces);
   gb::GarbOptions opt;
@@ -221,8 +222,11 @@ py::tuple garb(const Doubles& centres, const Doubles& radii, const std::optional
   opt.refine.repair_rounds = repair_rounds;
   opt.refine.max_gap = max_gap;
   opt.tolerance = tolerance;  // garb() checks it
+  const std::string thinning = thinning_given.value_or("cover");
   if (thinning != "cover" && thinning != "contain")
     bad("thinning must be 'cover' or 'contain', got '" + thinning + "'");
+  if (thinning_given && !(tolerance > 0))  // as `garb --thinning`
+    bad("thinning chooses how tolerance thins: give tolerance > 0");
   opt.thinning = thinning == "contain" ? gb::ThinMethod::contain : gb::ThinMethod::cover;
   if (gb::resolve(opt.primitives, atoms) == gb::PrimitiveSet::atoms)
     for (std::size_t i = 0; i < atoms.atoms.size(); ++i)
@@ -355,15 +359,15 @@ Returns (centres (k, 3), radii (k,)) or, with connectivity or simplify,
         py::arg("cone_filter") = py::none(), py::arg("cone_collar") = py::none(),
         py::arg("spheres_only") = false, py::arg("refine") = 0, py::arg("dual") = true,
         py::arg("max_travel") = 4.0, py::arg("repair_rounds") = 8, py::arg("max_gap") = 0.5,
-        py::arg("tolerance") = 0.0, py::arg("thinning") = "cover", py::arg("threads") = 0,
+        py::arg("tolerance") = 0.0, py::arg("thinning") = py::none(), py::arg("threads") = 0,
         R"(The garbing of medial atoms, as `garb`: a closed triangle mesh M2.
 
 centres (n, 3) float64, radii (n,); edges (e, 2) and faces (f, 3) make a medial mesh whose
 envelope (balls, cones, slabs) is garbed (primitives='auto' or 'ma'); 'rt' garbs the balls and
 the cones of `cones` ('rt', 'all', 'edges', 'none'). cone_filter and cone_collar (garb's defaults 0.9 and 1), like cones, mean primitives='rt'.
 tolerance: thin dense atoms first (leaf sides at depth d; stats['thinning'] says how many
-were kept), by thinning='cover' (nearby kept balls together cover a ball that goes) or
-'contain' (one kept ball contains it). The other options are garb's.
+were kept), by thinning='cover' (the default: nearby kept balls together cover a ball that
+goes) or 'contain' (one kept ball contains it); thinning without tolerance is refused. The other options are garb's.
 Returns (vertices (v, 3) float64, faces (t, 3) int32, stats dict). Raises ValueError on bad input.)");
   m.def("distance", &distance, py::arg("mesh_vertices"), py::arg("mesh_faces"),
         py::arg("reference_vertices"), py::arg("reference_faces"), py::kw_only(),

@@ -105,6 +105,8 @@ class Garbing(unittest.TestCase):
             garbing.garb(centres, radii, tolerance=-1)
         with self.assertRaisesRegex(ValueError, "thinning must be 'cover' or 'contain'"):
             garbing.garb(centres, radii, tolerance=1.0, thinning="union")
+        with self.assertRaisesRegex(ValueError, "thinning chooses how tolerance thins"):
+            garbing.garb(centres, radii, thinning="cover")
 
     def write_slab(self):
         ma = self.path("slab.ma")

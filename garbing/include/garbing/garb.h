@@ -26,7 +26,7 @@ struct GarbOptions {
   /// atoms'. 0: every atom, G exact. Atoms' G only (not an envelope). @pre >= 0 and finite
   double tolerance = 0;
   /// How (with tolerance > 0): cover (thin_atoms_by_cover(): the kept count is set by the
-  /// tolerance) or contain (thin_atoms(): fewer balls left out, G's boundary moves less).
+  /// tolerance) or contain (thin_atoms(): fewer balls left out, the same bound).
   ThinMethod thinning = ThinMethod::cover;
 };
 

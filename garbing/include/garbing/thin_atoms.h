@@ -51,26 +51,29 @@ MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* st
 /// grown ball holds the centre c of `ball`: their grown balls meet the sphere S of `ball` in
 /// caps; the caps cover S if every point of each cap's circle lies inside another cap (the
 /// uncovered part, were it not empty, would be bounded by such points), tested exactly on
-/// arcs (each shrunk by 1e-9 of an angle); then every segment from c to S lies in one grown
-/// ball (convex, holding both ends), so the ball is covered. A ball one grown ball contains is
-/// covered. Sound up to the rounding of the caps (an angle of about 1e-16 r / |c - c_j|), not
-/// complete: a ball covered only with the help of balls that do not hold c is not found
-/// covered.
+/// arcs (each shrunk by 1e-9 of a diamond angle, about 1e-9 radian; caps within 1e-12 of
+/// another and circles nearly coaxial with another, whose arcs rounding would decide, left
+/// out); then every segment from c to S lies in one grown ball (convex, holding both ends), so
+/// the ball is covered. A ball one grown ball contains is covered. Sound up to the rounding of
+/// the caps (an angle of about 1e-16 r / |c - c_j|), not complete: a ball covered only with
+/// the help of balls that do not hold c is not found covered.
 /// @pre radii > 0, slack >= 0, finite numbers
 bool union_covers_ball(const MedialAtom& ball, const std::vector<MedialAtom>& others,
                        double slack);
 
-/// thin_atoms(atoms, slack / 2), then a cover pass at slack / 2 over the atoms it kept: they are
-/// visited in thin_atoms()'s order (on a grid of side h = sqrt(2 rc slack / 2), rc =
-/// characteristic_radius(atoms), or coarser as there); first, greedily, every atom with no atom
-/// kept by then within sqrt(2 r slack / 2) of its centre (r its radius: the distance at which
-/// a neighbour of equal radius still covers the poles of its sphere) is kept; then each other
-/// atom goes when union_covers_ball() proves that the kept atoms with centre near its own (in
-/// the 3 x 3 x 3 cells of side h around it) cover it up to slack / 2, and is kept otherwise.
-/// Every ball left out lies within slack of the union of the kept balls, and the kept balls are
-/// given ones: the unions' Hausdorff distance is at most `slack` (up to rounding), and the kept
-/// count is about the medial surface's area / (rc slack) once the atoms are denser than that.
-/// Deterministic as thin_atoms() (no dependence on the thread count).
+/// thin_atoms(atoms, slack / 2), then a cover pass at slack / 2 over the atoms it kept, in the
+/// same kind of order (blocks of a grid of side h = sqrt(2 rc slack / 2) in Morton order, rc =
+/// characteristic_radius() of those atoms, in a block by decreasing radius, ties by index):
+/// first, greedily, every atom with no kept centre within sqrt(2 r slack / 2) of its own (r its
+/// radius: the distance at which a neighbour of equal radius still covers the poles of its
+/// sphere) among the 3 x 3 x 3 cells around it is kept (a seed); then each other atom goes when
+/// union_covers_ball() proves that the kept atoms with centres in those cells cover it up to
+/// slack / 2, and is kept otherwise. Every ball left out lies within `slack` of the union of
+/// the kept balls (within slack / 2 of a ball that lies within slack / 2 of it), and the kept
+/// balls are given ones: the unions' Hausdorff distance is at most `slack` (up to rounding).
+/// The kept count is about the medial surface's area / (r slack) once the atoms are denser
+/// than that, whatever their density. Deterministic as thin_atoms() (no dependence on the
+/// thread count).
 /// @param stats  slack, kept and dropped as thin_atoms(); covered: dropped by the cover pass
 /// @param kept_index  if given, receives the input index of each kept atom
 /// @pre as thin_atoms()
