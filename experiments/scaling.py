@@ -143,7 +143,7 @@ def plot(out, rows):
         ax.loglog(atoms, [r[theirs] for r in rows], "x-", color="tab:red",
                   label="OpenVDB (same V)")
         for (key, name, _, _), style, colour in zip(TOLERANCES, [".-", ".:", "+-."],
-                                                     ["tab:green", "tab:olive", "tab:purple"]):
+                                                     ["tab:cyan", "tab:olive", "tab:purple"]):
             column = key + ("_garbing_s" if ours == "garbing_s" else "_peak_mb")
             ax.loglog(atoms, [r[column] for r in rows], style, color=colour,
                       label="garbing, --tolerance %s" % name)
