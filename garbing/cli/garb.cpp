@@ -2,7 +2,8 @@
 //   garb INPUT.ma -o OUTPUT_MESH [--m1 M1_MESH] [--min-depth D] [--max-depth D]
 //        [--no-criterion N ...] [--primitives auto|ma|rt]
 //        [--cones rt|all|edges|none] [--cone-filter F] [--cone-collar C]
-//        [--spheres-only] [--tolerance F] [--thinning cover|contain] [--refine K] [--no-dual] [--max-travel T]
+//        [--spheres-only] [--tolerance F] [--thinning cover|contain] [--refine K] [--no-dual]
+//        [--max-travel T]
 //        [--repair-rounds N]
 //        [--max-gap F] [--check-topology] [--stats FILE.json] [--threads N]
 #include "garbing/garb.h"

@@ -60,10 +60,10 @@ class KeptGrid {
 
 /// The atoms on a grid, and the order in which a greedy pass visits them.
 struct GridOrder {
-  Eigen::Vector3d origin;    ///< the centres' bounding box's min corner
-  double side = 0;           ///< of a cell
+  Eigen::Vector3d origin;     ///< the centres' bounding box's min corner
+  double side = 0;            ///< of a cell
   std::vector<Cell> cell_of;  ///< each atom's cell
-  std::vector<int> order;    ///< the visit
+  std::vector<int> order;     ///< the visit
 };
 
 /// Cells of side h, or coarser where the atoms span more than 2^24 cells so that the blocks'
@@ -172,8 +172,7 @@ enum class Meets { contains, cap, nothing };
 
 /// The cap the ball (cj, rj) grown by the slack cuts from the sphere of `ball`, if that grown
 /// ball holds the centre of `ball` (the covering proof uses only such balls).
-Meets cap_of(const MedialAtom& ball, const Eigen::Vector3d& cj, double rj, double slack,
-             Cap& cap) {
+Meets cap_of(const MedialAtom& ball, const Eigen::Vector3d& cj, double rj, double slack, Cap& cap) {
   const double big = rj + slack, r = ball.radius;
   const Eigen::Vector3d v = cj - ball.centre;
   const double d = v.norm();

@@ -249,7 +249,8 @@ TEST(UnionCoversBall, NeverClaimsABallWithAnUncoveredPoint) {
     }
     const bool claimed = mg::garbing::union_covers_ball(ball, others, slack);
     bool all_in = true;
-    for (const Vector3d& p : ball_samples(ball, 20000)) all_in = all_in && in_grown(p, others, slack);
+    for (const Vector3d& p : ball_samples(ball, 20000))
+      all_in = all_in && in_grown(p, others, slack);
     if (claimed) {
       ++covered;
       EXPECT_TRUE(all_in) << "trial " << trial;
@@ -313,7 +314,8 @@ TEST(ThinAtomsByCover, TheKeptCountFollowsTheSlackNotTheDensity) {
   mg::garbing::thin_atoms(dense_sheet(100000, 2), slack, &dense_contain);
   EXPECT_LT(static_cast<double>(dense.kept), 1.6 * static_cast<double>(sparse.kept));
   EXPECT_LT(static_cast<double>(dense.kept), 5000.0);
-  EXPECT_GT(static_cast<double>(dense_contain.kept), 4.0 * static_cast<double>(sparse_contain.kept));
+  EXPECT_GT(static_cast<double>(dense_contain.kept),
+            4.0 * static_cast<double>(sparse_contain.kept));
 }
 
 TEST(ThinAtomsByCover, SameAtAnyThreadCountAndRefusals) {

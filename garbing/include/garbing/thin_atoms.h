@@ -58,8 +58,7 @@ MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* st
 /// the caps (an angle of about 1e-16 r / |c - c_j|), not complete: a ball covered only with
 /// the help of balls that do not hold c is not found covered.
 /// @pre radii > 0, slack >= 0, finite numbers
-bool union_covers_ball(const MedialAtom& ball, const std::vector<MedialAtom>& others,
-                       double slack);
+bool union_covers_ball(const MedialAtom& ball, const std::vector<MedialAtom>& others, double slack);
 
 /// thin_atoms(atoms, slack / 2), then a cover pass at slack / 2 over the atoms it kept, in the
 /// same kind of order (blocks of a grid of side h = sqrt(2 rc slack / 2) in Morton order, rc =
