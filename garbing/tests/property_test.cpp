@@ -3,11 +3,13 @@
 // nearly coincident centres), each garbed and checked: M2 a closed oriented 2-manifold, no
 // intersecting or degenerate triangle, every vertex within one leaf side of G, one outer shell
 // per component of the union of the balls (unless the depth stop fired), and, every fifth case,
-// the same M2 at 1 and 2 threads and with the atoms shuffled. Euler characteristics that
-// differ from the union's are counted by kind, not failed: random blobs hold cavities and
-// tunnels far below a leaf. Every tenth case is also given to the garb program in a run made to
-// fail (a bad atom, a missing or unwritable output folder, an output naming the input or a
-// folder): exit code, one line naming the file, and no output or temporary file left.
+// the same M2 at 1 and 2 threads and with the atoms shuffled; every fifth case (another one)
+// is also garbed with its atoms thinned (`--tolerance`, cover and contain by turns): closed,
+// fold-free, vertices within a leaf of the thinned G, the same at 1 and 2 threads. Euler
+// characteristics that differ from the union's are counted by kind, not failed: random blobs hold
+// cavities and tunnels far below a leaf. Every tenth case is also given to the garb program in a
+// run made to fail (a bad atom, a missing or unwritable output folder, an output naming the input
+// or a folder): exit code, one line naming the file, and no output or temporary file left.
 // MG_PROPERTY_CASES (default 500) sets the count, MG_PROPERTY_FIRST (default 0) the first
 // case: a long run, in chunks, is documented in docs/testing.md. MG_PROPERTY_DUMP=DIR writes
 // each case's atoms to DIR/case_<index>.ma (to garb a failing case by hand).
@@ -409,6 +411,38 @@ void check_case(int index, int levels, Tally& tally) {
     const mg::PolygonSoup three = mg::soup_from_mesh(mg::garbing::garb(shuffled, opt).m2.mesh);
     EXPECT_EQ(one.faces, three.faces);
     EXPECT_EQ(one.points, three.points);
+  }
+  if (index % 5 == 2) {
+    // The atoms thinned first (--tolerance F, F in [1/16, 1/2], cover or contain by turns): the
+    // same mesh properties on the thinned G, at 1 and 2 threads.
+    std::mt19937_64 gen(static_cast<unsigned long long>(index) + 7);
+    mg::garbing::GarbOptions thin_opt = opt;
+    thin_opt.tolerance = 0.0625 + 0.4375 * std::uniform_real_distribution<double>(0, 1)(gen);
+    thin_opt.thinning =
+        index % 10 == 2 ? mg::garbing::ThinMethod::cover : mg::garbing::ThinMethod::contain;
+    SCOPED_TRACE("tolerance " + std::to_string(thin_opt.tolerance) +
+                 (index % 10 == 2 ? " cover" : " contain"));
+    const mg::garbing::Garbing t = [&] {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      return mg::garbing::garb(atoms, thin_opt);
+    }();
+    const mg::PolygonSoup thin = mg::soup_from_mesh(t.m2.mesh);
+    const mg::MeshTopology thin_topo = mg::mesh_topology(thin);
+    EXPECT_TRUE(thin_topo.closed && thin_topo.oriented && thin_topo.manifold)
+        << thin_topo.first_problem;
+    EXPECT_EQ(t.m2.stats.intersecting_after, 0u);
+    EXPECT_EQ(t.m2.stats.degenerate_after, 0u);
+    EXPECT_EQ(t.thinning.kept + t.thinning.dropped, atoms.atoms.size());
+    EXPECT_EQ(t.g.sphere_count(), t.thinning.kept);
+    EXPECT_EQ(t.tree.min_depth, r.tree.min_depth);
+    double farthest = 0;
+    for (const Vector3d& p : thin.points)
+      farthest = std::max(farthest, t.g.distance(t.g.frame().to_local(p)));
+    EXPECT_LE(farthest, leaf);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    const mg::PolygonSoup again = mg::soup_from_mesh(mg::garbing::garb(atoms, thin_opt).m2.mesh);
+    EXPECT_EQ(thin.faces, again.faces);
+    EXPECT_EQ(thin.points, again.points);
   }
   if (index % 10 == 3) {
     const auto start = std::chrono::steady_clock::now();
