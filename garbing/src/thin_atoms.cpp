@@ -96,6 +96,19 @@ GridOrder grid_order(const std::vector<MedialAtom>& a, double h) {
   return g;
 }
 
+/// The atoms whose flag is set, in their order; their indices (index_of[i], or i) to kept_index.
+MedialSurface kept_atoms(const std::vector<MedialAtom>& a, const std::vector<char>& kept,
+                         const std::vector<int>* index_of, std::vector<int>* kept_index) {
+  MedialSurface out;
+  if (kept_index) kept_index->clear();
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (kept[i]) {
+      out.atoms.push_back(a[i]);
+      if (kept_index) kept_index->push_back(index_of ? (*index_of)[i] : static_cast<int>(i));
+    }
+  return out;
+}
+
 }  // namespace
 
 MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* stats,
@@ -140,13 +153,7 @@ MedialSurface thin_atoms(const MedialSurface& atoms, double slack, ThinStats* st
         grid.insert(i);
     }
   }
-  MedialSurface out;
-  if (kept_index) kept_index->clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (kept[i]) {
-      out.atoms.push_back(a[i]);
-      if (kept_index) kept_index->push_back(static_cast<int>(i));
-    }
+  const MedialSurface out = kept_atoms(a, kept, nullptr, kept_index);
   if (stats) {
     stats->slack = slack;
     stats->kept = out.atoms.size();
@@ -348,13 +355,7 @@ MedialSurface thin_atoms_by_cover(const MedialSurface& atoms, double slack, Thin
       }
     }
   }
-  MedialSurface out;
-  if (kept_index) kept_index->clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (kept[i]) {
-      out.atoms.push_back(a[i]);
-      if (kept_index) kept_index->push_back(first_index[i]);
-    }
+  const MedialSurface out = kept_atoms(a, kept, &first_index, kept_index);
   if (stats) {
     stats->slack = slack;
     stats->kept = out.atoms.size();

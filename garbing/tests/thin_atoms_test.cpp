@@ -123,17 +123,25 @@ TEST(ThinAtoms, EachPairWithinTheSlackKeepsOneWhereverTheGridCellsFall) {
         << "pair " << i / 2;
 }
 
-TEST(ThinAtoms, SameAtAnyThreadCount) {
-  const mg::MedialSurface s = dense_tube(20000, 11);
+/// The kept indices of `thin` on the atoms at 1 and at 4 threads.
+template <class Thin>
+std::pair<std::vector<int>, std::vector<int>> kept_at_1_and_4_threads(const mg::MedialSurface& s,
+                                                                      Thin thin) {
   std::vector<int> one, four;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    mg::garbing::thin_atoms(s, 0.004, nullptr, &one);
+    thin(s, 0.004, nullptr, &one);
   }
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 4);
-    mg::garbing::thin_atoms(s, 0.004, nullptr, &four);
+    thin(s, 0.004, nullptr, &four);
   }
+  return {one, four};
+}
+
+TEST(ThinAtoms, SameAtAnyThreadCount) {
+  const mg::MedialSurface s = dense_tube(20000, 11);
+  const auto [one, four] = kept_at_1_and_4_threads(s, mg::garbing::thin_atoms);
   EXPECT_EQ(one, four);
   EXPECT_LT(one.size(), s.atoms.size());
 }
@@ -320,15 +328,7 @@ TEST(ThinAtomsByCover, TheKeptCountFollowsTheSlackNotTheDensity) {
 
 TEST(ThinAtomsByCover, SameAtAnyThreadCountAndRefusals) {
   const mg::MedialSurface s = dense_tube(20000, 11);
-  std::vector<int> one, four;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    mg::garbing::thin_atoms_by_cover(s, 0.004, nullptr, &one);
-  }
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 4);
-    mg::garbing::thin_atoms_by_cover(s, 0.004, nullptr, &four);
-  }
+  const auto [one, four] = kept_at_1_and_4_threads(s, mg::garbing::thin_atoms_by_cover);
   EXPECT_EQ(one, four);
   EXPECT_LT(one.size(), s.atoms.size());
   std::vector<int> all;
